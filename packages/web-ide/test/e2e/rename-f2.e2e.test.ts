@@ -9,7 +9,9 @@
  * (its 5 s on the page are enough: it is waited for from the moment Enter is pressed), the files.
  * A rename the server cannot carry over (a target path taken) is taken back in the editor and
  * saves nothing: it said so in a notice, yet kept the renamed text in every tab and saved it, so
- * the next Generate All orphaned the module's code and generated into the user's folder.
+ * the next Generate All orphaned the module's code and generated into the user's folder. What the
+ * user typed while the refusal was on its way is kept and saved; a server that does not answer
+ * (the connection refused, page.route) gets the rename taken back too.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { existsSync, mkdirSync, readFileSync, readdirSync, writeFileSync } from 'node:fs';
@@ -76,6 +78,59 @@ describe('F2 renames in the IDE', () => {
     expect(disk(`${MODULES}/ODO_mod/module.c`)).toContain(userCode);
     expect(readdirSync(join(s.workspace, MODULES, 'QQQ_mod'))).toEqual(['notes.txt']);
     expect(existsSync(join(s.workspace, 'src-gen/orphans'))).toBe(false);
+  }, 90_000);
+
+  it('a rename the server refuses while the user types on: the rename is taken back, the typing kept and saved; no answer at all: taken back too', async () => {
+    const { page } = s;
+    const renamed = ['navigation.contract', 'drive.contract', 'localisation-loop.contract', 'scheduler.contract'];
+    const before = new Map(renamed.map((f) => [f, disk(f)]));
+    const model = (p: string) => page.evaluate((path) => (window as any).__ide.workspace.files.get(path).model.getValue() as string, p);
+    // the server's answer held until the user typed in the renamed file, then a refusal
+    let answer!: () => void;
+    const typed = new Promise<void>((r) => (answer = r));
+    await page.route('**/api/rename-entity', async (route) => {
+      await typed;
+      await route.fulfill({ status: 409, contentType: 'application/json', body: JSON.stringify({ error: 'refused by the test' }) });
+    });
+    try {
+      await renameWithF2(page, 'navigation.contract', 'module NAV', 'module '.length, 'PLN');
+      await expect.poll(() => activeValue(page), { timeout: 10_000 }).toContain('module PLN {');
+      await page.keyboard.press('Control+End');
+      await page.keyboard.type('// typed while the rename was on its way\n');
+      answer();
+      const notice = page.locator('.toast.error', { hasText: 'refused by the test' }).first();
+      await notice.waitFor({ timeout: 15_000 });
+      await expect.poll(() => activeValue(page), { timeout: 10_000 }).toBe(`${before.get('navigation.contract')}// typed while the rename was on its way\n`);
+      expect(await notice.textContent()).toContain('Rename NAV → PLN not made: refused by the test');
+      await waitSaved(page);
+      expect(disk('navigation.contract')).toBe(await activeValue(page)); // the typing saved, as any edit
+      for (const f of renamed.slice(1)) {
+        expect(await model(f)).toBe(before.get(f));
+        expect(disk(f), f).toBe(before.get(f));
+      }
+    } finally {
+      await page.unroute('**/api/rename-entity');
+    }
+    const typedText = disk('navigation.contract');
+
+    // no answer (the connection refused): the failure may come before the editor applied the rename
+    await page.route('**/api/rename-entity', (route) => route.abort('connectionrefused'));
+    try {
+      await renameWithF2(page, 'navigation.contract', 'module NAV', 'module '.length, 'PLN');
+      const notice = page.locator('.toast.error', { hasText: 'server unreachable' }).first();
+      await notice.waitFor({ timeout: 15_000 });
+      await expect.poll(() => activeValue(page), { timeout: 10_000 }).toBe(typedText);
+      expect(await notice.textContent()).toContain('Rename NAV → PLN not made: server unreachable. The IDE server did not answer');
+      await waitSaved(page);
+      await page.waitForTimeout(1000); // past autosave's delay
+      expect(disk('navigation.contract')).toBe(typedText);
+      for (const f of renamed.slice(1)) {
+        expect(await model(f)).toBe(before.get(f));
+        expect(disk(f), f).toBe(before.get(f));
+      }
+    } finally {
+      await page.unroute('**/api/rename-entity');
+    }
   }, 90_000);
 
   it.skipIf(!canGenerate)('an enumeration: the .contract files, common/Shared<Enum>.h and its C names in the regions\' code follow; then a member', async () => {
