@@ -7,12 +7,13 @@
  */
 import { stat } from 'node:fs/promises';
 import { join, resolve } from 'node:path';
-import type { GenerationProblem, GenerationReport } from '@contract-studio/codegen';
+import type { FinishedRename, GenerationProblem, GenerationReport } from '@contract-studio/codegen';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { formatText, summarize } from '../diagnostic-format.js';
 import { SRC_GEN_DIR, foldersHoldingAll } from '@contract-studio/conventions';
 import { safeName } from '../terminal-text.js';
+import { MENTIONED_KINDS, printRegionMentions } from '../region-mentions-text.js';
 import { holdTreeLock } from '../tree-lock-hold.js';
 
 function list(io: CliIO, label: string, paths: string[], show = true): void {
@@ -64,9 +65,11 @@ export const generateCommand: Command = {
         const { generateArchitecture } = await import('@contract-studio/codegen');
         // the tree's write lock before the model is read (a rename in another terminal or the IDE
         // changes the .contract files and the tree together: seen whole or not at all)
-        const release = await holdTreeLock(out, typeof outOption === 'string' ? outOption : join(dirArg, SRC_GEN_DIR), io, { dir, label: dirArg });
+        const { release, finished } = await holdTreeLock(out, typeof outOption === 'string' ? outOption : join(dirArg, SRC_GEN_DIR), io, { dir, label: dirArg });
         try {
-            return await generateHeld(dir, dirArg, out, outOption, options.get('verbose') === true, io, loadWorkspace, generateArchitecture);
+            const status = await generateHeld(dir, dirArg, out, outOption, options.get('verbose') === true, io, loadWorkspace, generateArchitecture);
+            if (finished) await listFinishedRenameLeftovers(io, finished, out, typeof outOption === 'string' ? outOption : join(dirArg, SRC_GEN_DIR));
+            return status;
         } finally {
             release();
         }
@@ -102,6 +105,19 @@ async function generateHeld(
         await printReport(io, report, outLabel, verbose);
         io.err(`generated ${safeName(outLabel)}: ${report.created.length} created, ${report.updated.length} updated, ${report.unchanged.length} kept, ${report.orphaned.length} orphaned, ${report.errors.length} error(s)\n`);
         return report.errors.length > 0 ? EXIT_FAILURE : EXIT_OK;
+}
+
+/**
+ * After finishing a rename killed half-way (and generating): the protected regions that still
+ * mention its old name, listed as `contract rename` lists them (region-mentions-text.ts), with a
+ * summary line when code uses it (the build fails until it is changed by hand).
+ */
+async function listFinishedRenameLeftovers(io: CliIO, finished: FinishedRename, out: string, outLabel: string): Promise<void> {
+    if (!MENTIONED_KINDS.has(finished.kind)) return;
+    const { findRegionMentions, oldNamesMatcher } = await import('@contract-studio/codegen');
+    const mentions = findRegionMentions(out, oldNamesMatcher(finished.kind, finished.oldName, finished.identifiers.map(([from]) => from)), finished.identifierOwner);
+    const inCode = printRegionMentions(io, mentions, finished.oldName, (f) => safeName(`${outLabel.replace(/\/+$/, '')}/${f}`));
+    if (inCode > 0) io.err(`contract generate: the rename of ${finished.kind} ${finished.oldName} -> ${finished.newName} is finished, but ${inCode} use(s) of ${finished.oldName} in protected-region code were not changed (listed above)\n`);
 }
 
 /** The sub-folder of `dir` that holds every one of `files` and has a `src-gen/` of its own, when `dir` has none (`out` absent): the project is that folder. */

@@ -23,6 +23,7 @@ import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { formatText, summarize } from '../diagnostic-format.js';
 import { safeName } from '../terminal-text.js';
+import { MENTIONED_KINDS, printRegionMentions } from '../region-mentions-text.js';
 import { holdTreeLock } from '../tree-lock-hold.js';
 import { printReport } from './generate.js';
 import { RENAME_JOURNAL_NAME, SRC_GEN_DIR } from '@contract-studio/conventions';
@@ -57,7 +58,7 @@ export const renameCommand: Command = {
 
         // the tree's write lock for the whole rename (carry-over, .contract files, generation): a
         // generate in another terminal or the IDE reads the model and the tree after it, whole
-        const release = await holdTreeLock(out, outLabel, io, { dir, label: dirArg });
+        const { release } = await holdTreeLock(out, outLabel, io, { dir, label: dirArg });
         const renameHeld = async (): Promise<number> => {
             // a journal still there was refused (said above): it may be the only record of a killed
             // rename, so this rename neither goes past it nor replaces it
@@ -165,16 +166,7 @@ export const renameCommand: Command = {
             let inCode = 0;
             if (MENTIONED_KINDS.has(plan.kind)) {
                 const mentions = findRegionMentions(out, mentionMatcher(plan.kind, plan.oldName, enumeration), variable ? owner : undefined);
-                for (const m of mentions) {
-                    const where = `${inTree(m.file)}:${m.line}: protected region ${safeName(m.id)}`;
-                    // a header named after the entity is gone: an #include of it fails like code does
-                    if (m.context === 'code' || (m.word !== plan.oldName && m.word.startsWith('Shared'))) {
-                        inCode++;
-                        io.err(`warning: ${where} still uses ${safeName(m.word)} (the old name) ${m.context === 'code' ? 'in its code' : 'in an #include'}: change it by hand, the build fails until then\n`);
-                    } else {
-                        io.err(`note: ${where} mentions ${safeName(m.word)} (the old name) in a ${m.context === 'comment' ? 'comment' : 'string or character literal'}: not changed\n`);
-                    }
-                }
+                inCode = printRegionMentions(io, mentions, plan.oldName, inTree);
                 if (inCode > 0) io.err(`contract rename: ${plan.kind} renamed, but ${inCode} use(s) of ${plan.oldName} in protected-region code were not changed (listed above)\n`);
             }
             return report.errors.length > 0 || inCode > 0 ? EXIT_FAILURE : EXIT_OK;
@@ -186,9 +178,6 @@ export const renameCommand: Command = {
         }
     },
 };
-
-/** Kinds whose names the generated C or the user code uses (a schema or a supervision function is in no module's C). */
-const MENTIONED_KINDS = new Set(['module', 'supervisor', 'datatype', 'enumeration', 'enumeration member', 'function', 'port', 'parameter']);
 
 /** Errors that leave the text or the imports unknown (unresolved references are checked on the documents). */
 function blocksRename(code: string): boolean {

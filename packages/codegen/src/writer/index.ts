@@ -4,7 +4,7 @@ export { ORPHANS_DIR } from './orphans.js';
 export { MANIFEST_NAME } from './manifest.js';
 export { renameInGeneratedTree, renameRegionId, renameGeneratedName, type RenameGeneratedReport } from './rename-generated.js';
 export {
-    renameIdentifierInGeneratedTree, renameIdentifiersInGeneratedTree, identifierRenames, findRegionMentions, mentionMatcher, carryRefusedMessage,
+    renameIdentifierInGeneratedTree, renameIdentifiersInGeneratedTree, identifierRenames, findRegionMentions, mentionMatcher, oldNamesMatcher, carryRefusedMessage,
     type IdentifierCarryReport, type RegionMention, type EnumerationNames,
 } from './rename-user-code.js';
 export { cWords, renameIdentifier, type CWord, type WordContext } from './c-identifiers.js';

@@ -21,7 +21,8 @@ import { realpathSync } from 'node:fs';
 import { resolve } from 'node:path';
 import { RENAME_JOURNAL_NAME, SRC_GEN_DIR } from '@contract-studio/conventions';
 import { OutputTree } from './output-tree.js';
-import { carryRenameIntoTree } from './carry-rename.js';
+import { carryRenameIntoTree, type TreeCarryOver } from './carry-rename.js';
+import { carryRefusedMessage, type RegionMention } from './rename-user-code.js';
 import { treePathProblem } from './safe-paths.js';
 
 export { RENAME_JOURNAL_NAME };
@@ -122,6 +123,16 @@ export interface FinishedRename {
     already: string[];
     /** Project files changed since the rename began (or gone): left as they are. */
     changed: string[];
+    /** The C identifiers the rename changes in the protected regions' code (the journal's), as pairs. */
+    identifiers: Array<[string, string]>;
+    /** The module whose module.c alone holds them (a port or parameter). */
+    identifierOwner?: string;
+    /**
+     * Why the uses of those identifiers in the protected regions' code were not rewritten, when
+     * they were not (IdentifierCarryReport.refused, a file relative to the tree): the build fails
+     * until they are changed by hand.
+     */
+    refused?: RegionMention;
 }
 
 /**
@@ -155,12 +166,17 @@ export async function finishInterruptedRename(projectDir: string, srcGen: string
     if (!own && (journal.project === undefined || journal.project !== realOrSelf(projectDir))) {
         throw new Error(`${RENAME_JOURNAL_NAME} in this output folder journals a rename of ${journal.project ?? 'the project whose src-gen it was'}, not of ${projectDir}: nothing was changed; run contract generate on that project with this output folder, or remove it`);
     }
+    let carried: TreeCarryOver;
     try {
-        await carryRenameIntoTree(srcGen, journal);
+        carried = await carryRenameIntoTree(srcGen, journal);
     } catch (e) {
         throw new Error(`the rename of ${journal.kind} ${journal.oldName} -> ${journal.newName} in ${SRC_GEN_DIR}/${RENAME_JOURNAL_NAME} cannot be finished: ${(e as Error).message}; nothing was changed; remove the journal to go on (the tree keeps what the killed rename moved)`);
     }
-    const done: FinishedRename = { kind: journal.kind, oldName: journal.oldName, newName: journal.newName, written: [], already: [], changed: [] };
+    const done: FinishedRename = {
+        kind: journal.kind, oldName: journal.oldName, newName: journal.newName, written: [], already: [], changed: [],
+        identifiers: journal.identifiers, ...(journal.identifierOwner !== undefined ? { identifierOwner: journal.identifierOwner } : {}),
+        ...(carried.code?.refused ? { refused: carried.code.refused } : {}),
+    };
     // the project folder as named (a link to it, or the IDE's /proc/self/fd path of the folder it
     // opened, is the user's own choice); below it no link is followed
     const project = new OutputTree(`${projectDir.replace(/\/+$/, '')}/.`);
@@ -197,15 +213,27 @@ export interface FinishedRenameDescription {
     summary: string;
     /** The project files given their renamed text, as the caller names them. */
     written: string[];
-    /** One sentence per project file left as it was (changed since the rename began, or gone). */
+    /**
+     * One sentence per project file left as it was (changed since the rename began, or gone), and
+     * one when the uses in the protected regions' code were not rewritten (a capture).
+     */
     warnings: string[];
 }
 
-/** Says what finishInterruptedRename did; `inProject` names a project file (relative path) for the reader. */
-export function describeFinishedRename(done: FinishedRename, inProject: (path: string) => string): FinishedRenameDescription {
+/**
+ * Says what finishInterruptedRename did; `inProject` names a project file (relative path) for the
+ * reader, `inTree` a file of the generated tree (relative to it; by default as the tree's folder
+ * in the project, `src-gen/...`).
+ */
+export function describeFinishedRename(done: FinishedRename, inProject: (path: string) => string, inTree: (path: string) => string = (f) => inProject(`${SRC_GEN_DIR}/${f}`)): FinishedRenameDescription {
+    const warnings = done.changed.map((f) => `${inProject(f)} changed since the rename began (or is gone): left as it is; rename ${done.oldName} there by hand`);
+    if (done.refused) {
+        const taken = done.refused;
+        warnings.push(`${carryRefusedMessage(taken, done.identifiers.map(([from]) => from), `${inTree(taken.file)}:${taken.line}`)}: change them by hand, the build fails until then`);
+    }
     return {
         summary: `finished the rename of ${done.kind} ${done.oldName} -> ${done.newName} that was interrupted (its journal ${SRC_GEN_DIR}/${RENAME_JOURNAL_NAME}): ${done.written.length} file(s) written, ${done.already.length} already renamed`,
         written: done.written.map(inProject),
-        warnings: done.changed.map((f) => `${inProject(f)} changed since the rename began (or is gone): left as it is; rename ${done.oldName} there by hand`),
+        warnings,
     };
 }

@@ -67,6 +67,33 @@ describe('renameIdentifierInGeneratedTree (a renamed port or parameter)', () => 
         expect(r.remaining.map((m) => [m.line, m.id, m.context])).toEqual([[3, 'protect_internal_vars_MSC', 'comment'], [7, 'protect_exec_MSC', 'code']]);
     });
 
+    it('a file whose code already uses the new name and not the old one (rewritten before a rename was killed) does not stop the others', () => {
+        const dir = out();
+        for (const m of ['MSA', 'MSB', 'MSC']) mkdirSync(join(dir, `generated/architecture/modules/${m}_mod`), { recursive: true });
+        writeFileSync(join(dir, path('MSA')), file('MSA', 'Pose a = p_in; print_Pose(&a);'));
+        writeFileSync(join(dir, path('MSB')), file('MSB', 'Position b = p_in; print_Position(&b);'));
+        writeFileSync(join(dir, path('MSC')), file('MSC', 'Position c = p_in;', 'static int eq_Pose; // a name of its own: eq_Position is not used here'));
+        const r = renameIdentifiersInGeneratedTree(dir, identifierRenames('datatype', 'Position', 'Pose'));
+        expect(r.refused).toBeUndefined();
+        expect(r.rewritten.map((x) => [x.file, x.occurrences])).toEqual([[path('MSB'), 2], [path('MSC'), 1]]);
+        expect(readFileSync(join(dir, path('MSA')), 'latin1')).toBe(file('MSA', 'Pose a = p_in; print_Pose(&a);'));
+        expect(readFileSync(join(dir, path('MSB')), 'latin1')).toBe(file('MSB', 'Pose b = p_in; print_Pose(&b);'));
+        expect(readFileSync(join(dir, path('MSC')), 'latin1')).toContain('Pose c = p_in;');
+    });
+
+    it('a file using the old name and the new one as two things, in two of its regions, is a capture: refused, nothing changed anywhere', () => {
+        const dir = out();
+        for (const m of ['MSB', 'MSC']) mkdirSync(join(dir, `generated/architecture/modules/${m}_mod`), { recursive: true });
+        writeFileSync(join(dir, path('MSB')), file('MSB', 'Position b = p_in;'));
+        const capture = file('MSC', 'Position c = p_in; (void)Pose;', 'static double Pose;');
+        writeFileSync(join(dir, path('MSC')), capture);
+        const r = renameIdentifiersInGeneratedTree(dir, identifierRenames('datatype', 'Position', 'Pose'));
+        expect(r.refused).toEqual({ file: path('MSC'), line: 3, id: 'protect_internal_vars_MSC', word: 'Pose', context: 'code' });
+        expect(r.rewritten).toEqual([]);
+        expect(readFileSync(join(dir, path('MSB')), 'latin1')).toBe(file('MSB', 'Position b = p_in;'));
+        expect(readFileSync(join(dir, path('MSC')), 'latin1')).toBe(capture);
+    });
+
     it('findRegionMentions: a datatype\'s generated names count, member names do not', () => {
         const dir = out();
         mkdirSync(join(dir, 'generated/architecture/modules/MSC_mod'), { recursive: true });

@@ -33,7 +33,15 @@ export interface RegionMention {
  * member only its constant (`Mode_AUTO`: the bare member name is no C name).
  */
 export function mentionMatcher(kind: string, name: string, enumeration: EnumerationNames = {}): (word: string) => boolean {
-    const words = new Set([...(kind === 'enumeration member' ? [] : [name]), ...identifierRenames(kind, name, name, enumeration).keys()]);
+    return oldNamesMatcher(kind, name, identifierRenames(kind, name, name, enumeration).keys());
+}
+
+/**
+ * mentionMatcher of a rename of `name`, of kind `kind`, whose C identifiers (identifierRenames'
+ * old names) are `identifiers`: a rename's journal holds them (finishing a rename killed half-way).
+ */
+export function oldNamesMatcher(kind: string, name: string, identifiers: Iterable<string>): (word: string) => boolean {
+    const words = new Set([...(kind === 'enumeration member' ? [] : [name]), ...identifiers]);
     if (kind === 'datatype' || kind === 'enumeration') words.add(`Shared${name}`);
     if (kind === 'function') words.add(`SharedFunction${name}`);
     return (w) => words.has(w);
@@ -103,7 +111,8 @@ export interface IdentifierCarryReport {
     remaining: RegionMention[];
     /**
      * Why uses in code were not rewritten, when they were not: the first use in code of a new name
-     * (its file relative to the tree, as every file here), which a local of that name would capture.
+     * in a file whose code also uses the old one (its file relative to the tree, as every file
+     * here), which a local of that name would capture.
      */
     refused?: RegionMention;
 }
@@ -168,12 +177,29 @@ function renameIdentifiers(text: string, renames: Map<string, string>): { text: 
 }
 
 /**
+ * The uses in code of a new name of `renames` that a rewrite of file `rel` would capture: those of
+ * a file whose code also uses the old name it replaces (a local or a global of the new name there
+ * would take the rewritten uses; a file is one translation unit, so any two of its regions count).
+ * A file whose code holds the new name and not the old one has nothing to rewrite, nothing to
+ * capture: the new name's own uses, or a file rewritten already (by a rename killed half-way,
+ * whose finishing carries the rename over again).
+ */
+function capturingUses(rel: string, text: string, renames: Map<string, string>): RegionMention[] {
+    const names = new Set([...renames.keys(), ...renames.values()]);
+    const inCode = mentionsIn(rel, text, (w) => names.has(w)).filter((m) => m.context === 'code');
+    const usedOld = new Set(inCode.map((m) => m.word).filter((w) => renames.has(w)));
+    const capturedBy = new Set([...renames].filter(([from]) => usedOld.has(from)).map(([, to]) => to));
+    return inCode.filter((m) => capturedBy.has(m.word));
+}
+
+/**
  * Carries a rename over in the user code of the generated tree `srcGen` (only the files under a
  * folder `<owner>_mod` when `owner` is given: a port or parameter is a variable of its module's
  * module.c): every use of an old name of `renames` in the protected regions' code, as a whole C
  * identifier and not a member name (`x.old`, `p->old`) nor in a comment or literal, becomes the
- * new name. Refused (nothing changed, every use reported) when a new name is already a word of
- * that code (a local of that name would capture the uses). User code is otherwise kept byte for
+ * new name. Refused (nothing changed, every use reported) when a file's code uses both an old name
+ * and the new one replacing it (a local of the new name would capture the uses: capturingUses); a
+ * file already using only the new name (rewritten before a rename was killed) does not stop the others. User code is otherwise kept byte for
  * byte; files' skeletons do not change; `orphans/` is not touched.
  */
 export function renameIdentifiersInGeneratedTree(srcGen: string, renames: Map<string, string>, owner?: string): IdentifierCarryReport {
@@ -197,8 +223,7 @@ export function renameIdentifiersInGeneratedTree(srcGen: string, renames: Map<st
                 // malformed: left as it is (generate reports it with its line)
             }
         }
-        const newNames = new Set(renames.values());
-        const taken = files.flatMap((f) => mentionsIn(f.rel, f.text, (w) => newNames.has(w)).filter((m) => m.context === 'code'));
+        const taken = files.flatMap((f) => capturingUses(f.rel, f.text, renames));
         if (taken.length > 0) {
             report.refused = taken[0]!;
         } else {
