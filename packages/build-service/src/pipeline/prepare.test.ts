@@ -223,6 +223,23 @@ describe('prepareWorkspace on a project folder: what of it is read', () => {
     expect(readFileSync(join(carried.ws.workDir, MSC), 'utf8')).toBe(text);
   }, 120_000);
 
+  it('builds a region cut whole from its own module.c (its indentation left there) and pasted into another: carried home with a warning, its own file not refused as edited outside its regions', async () => {
+    const MSC = 'src-gen/generated/architecture/modules/MSC_mod/module.c';
+    const MSD = 'src-gen/generated/architecture/modules/MSD_mod/module.c';
+    const dir = project();
+    const msc = readFileSync(join(dir, MSC), 'utf8');
+    const cut = /\n {4}(\/\*PROTECTED REGION ID\(protect_exec_MSC\)[^]*?END\*\/)/.exec(msc)!;
+    writeFileSync(join(dir, MSC), msc.replace(cut[0], '\n    '));
+    writeFileSync(join(dir, MSD), readFileSync(join(dir, MSD), 'utf8').replace(/(protect_exec_MSD\) ENABLED START[^]*?PROTECTED REGION END\*\/)/, `$1\n    ${cut[1]}`));
+    const ws = workspace();
+    const out = await prepareWorkspace(ws, { dir }, 'cactal', { ...DEFAULT_LIMITS }, () => {});
+    const problems = out.problems.map((p) => `${p.file}:${p.line}: ${p.severity}: ${p.message}`);
+    expect(out.ok, problems.join('\n')).toBe(true);
+    expect(problems).toEqual([expect.stringMatching(/^generated\/architecture\/modules\/MSD_mod\/module\.c:\d+: warning: protected region protect_exec_MSC is no region of this file but of generated\/architecture\/modules\/MSC_mod\/module\.c /)]);
+    expect(readFileSync(join(ws.workDir, MSC), 'utf8')).toBe(msc);
+    expect(existsSync(join(ws.stageDir, 'project/src-gen/orphans'))).toBe(false);
+  }, 120_000);
+
   it("builds once an interrupted rename's journal is gone from the project (generate finished it): the stage drops its copy, which refused every later build of that workspace", async () => {
     const dir = project();
     const ws = workspace();

@@ -79,6 +79,24 @@ export function skeletonLines(text: string, file: string, regions: Region[] = pa
     return { hashes, fileLines };
 }
 
+/**
+ * The hashes of the skeleton lines of `text` (a freshly generated file) on which a region of `ids`
+ * starts: such a line of the recorded skeleton, gone from a file on disk that lacks the region (cut
+ * from it, its code carried back home by this generation: misplaced-regions.ts), loses no code.
+ */
+export function regionLineHashes(text: string, file: string, ids: Iterable<string>): Set<number> {
+    const wanted = new Set(ids);
+    const regions = parseRegions(text, file).regions;
+    const lines = skeletonLines(text, file, regions);
+    const out = new Set<number>();
+    for (const r of regions) {
+        if (!wanted.has(r.id)) continue;
+        const j = lines.fileLines.indexOf(r.line);
+        if (j >= 0) out.add(lines.hashes[j]!);
+    }
+    return out;
+}
+
 export function encodeLineHashes(hashes: readonly number[]): string {
     let out = '';
     for (const h of hashes) out += ALPHABET[(h >>> 18) & 63]! + ALPHABET[(h >>> 12) & 63]! + ALPHABET[(h >>> 6) & 63]! + ALPHABET[h & 63]!;
@@ -101,14 +119,40 @@ export interface EditsOutside {
     written: number[];
     /** Where skeleton lines the generator wrote are gone (not replaced by a written line): the file line before them (0: the top). */
     removedAfter: number[];
+    /** How many lines written or removed were left out as no edit (EditsExcused). */
+    excused: number;
+}
+
+/** Differences that lose no code, left out of editsOutside's lists (counted in `excused`). */
+export interface EditsExcused {
+    /** A line of the file on disk (1-based) that holds no code: a whitespace-only one (blankLines). */
+    written?: (fileLine: number) => boolean;
+    /** A recorded line (its hash) whose removal loses nothing: the line of a region carried back into the file. */
+    removed?: (hash: number) => boolean;
+}
+
+/** Whether a line (1-based) of `text` holds nothing but whitespace: no code, whoever wrote it. */
+export function blankLines(text: string): (line: number) => boolean {
+    let starts: number[] | undefined;
+    return (line) => {
+        if (!starts) {
+            starts = [0];
+            for (let nl = text.indexOf('\n'); nl >= 0; nl = text.indexOf('\n', nl + 1)) starts.push(nl + 1);
+        }
+        const start = starts[line - 1];
+        if (start === undefined) return false;
+        const end = line < starts.length ? starts[line]! : text.length;
+        return /^\s*$/.test(text.slice(start, end));
+    };
 }
 
 /**
  * The lines of `current` (skeleton lines of the file on disk) that are not in `recorded` (the
  * generator's, from the manifest), and where recorded lines were removed: a longest common
- * subsequence of the two hash lists, after their common head and tail.
+ * subsequence of the two hash lists, after their common head and tail; what `excused` says loses
+ * no code is only counted.
  */
-export function editsOutside(recorded: readonly number[], current: SkeletonLines): EditsOutside {
+export function editsOutside(recorded: readonly number[], current: SkeletonLines, excused: EditsExcused = {}): EditsOutside {
     const b = current.hashes;
     let head = 0;
     while (head < recorded.length && head < b.length && recorded[head] === b[head]) head++;
@@ -118,23 +162,31 @@ export function editsOutside(recorded: readonly number[], current: SkeletonLines
     const m = b.length - head - tail;
     const written: number[] = [];
     const removedAfter: number[] = [];
+    let excusedCount = 0;
     const lineBefore = (j: number) => (j > 0 ? current.fileLines[j - 1]! : 0);
     const addWritten = (j: number) => {
         const line = current.fileLines[j]!;
-        if (written[written.length - 1] !== line) written.push(line);
+        if (excused.written?.(line)) excusedCount++;
+        else if (written[written.length - 1] !== line) written.push(line);
     };
-    const addRemoved = (j: number) => {
+    /** Recorded line `i` (an index of `recorded`; undefined: a block of them) gone, before the file's skeleton line `j`. */
+    const addRemoved = (j: number, i?: number) => {
+        if (i !== undefined && excused.removed?.(recorded[i]!)) {
+            excusedCount++;
+            return;
+        }
         const after = lineBefore(j);
         if (removedAfter[removedAfter.length - 1] !== after) removedAfter.push(after);
     };
     // a generated line replaced by another is a line written, not also one removed
     const result = (): EditsOutside => {
         const writtenSet = new Set(written);
-        return { written, removedAfter: removedAfter.filter((after) => !writtenSet.has(after) && !writtenSet.has(after + 1)) };
+        return { written, removedAfter: removedAfter.filter((after) => !writtenSet.has(after) && !writtenSet.has(after + 1)), excused: excusedCount };
     };
     if (n === 0 || m === 0 || n * m > MAX_DIFF_CELLS) {
         for (let j = head; j < head + m; j++) addWritten(j);
-        if (n > 0) addRemoved(head);
+        // (a block of lines removed is named as one: nothing in it excused, but a lone line)
+        if (n > 0) addRemoved(head, n === 1 ? head : undefined);
         return result();
     }
     // lcs[i][j]: the longest common subsequence of recorded[head+i..] and b[head+j..]
@@ -157,7 +209,7 @@ export function editsOutside(recorded: readonly number[], current: SkeletonLines
             addWritten(head + j);
             j++;
         } else {
-            addRemoved(head + j);
+            addRemoved(head + j, head + i);
             i++;
         }
     }

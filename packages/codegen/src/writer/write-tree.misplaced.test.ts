@@ -60,9 +60,29 @@ describe('writeTree: a protected region in the wrong generated file', () => {
         writeTree(other, tree);
         pasteIntoGtg(other);
         writeFileSync(join(other, NAV), read(other, NAV).replace(/\n {4}\/\*PROTECTED REGION ID\(protect_exec_NAV\)[^]*?END\*\//, ''));
-        // (NAV's file, with generated lines removed, is copied to orphans/ as edited outside its regions)
-        expect(writeTree(other, tree).orphaned).not.toContain(`orphans/${GTG}`);
+        // (the line of the region carried home is no line removed outside its regions: nothing orphaned)
+        expect(writeTree(other, tree).orphaned).toEqual([]);
         expect(read(other, NAV)).toContain(`ID(protect_exec_NAV) ENABLED START*/${code}/*PROTECTED REGION END*/`);
+    });
+
+    it('cut whole from its own file (its indentation left there, or its whole line) and pasted into another: carried home, its own file neither orphaned nor refused (generate and build alike)', () => {
+        for (const displacedCode of ['orphan', 'refuse'] as const) {
+            for (const left of ['    ', '']) {
+                const dir = out();
+                writeTree(dir, tree);
+                const nav = read(dir, NAV).replace(`ID(protect_exec_NAV) ENABLED START*/\n    //TODO\n    `, `ID(protect_exec_NAV) ENABLED START*/${code}`);
+                const cut = /\n( {4})(\/\*PROTECTED REGION ID\(protect_exec_NAV\)[^]*?END\*\/)/.exec(nav)!;
+                writeFileSync(join(dir, NAV), nav.replace(cut[0], left === '' ? '' : `\n${left}`));
+                writeFileSync(join(dir, GTG), read(dir, GTG).replace(/(protect_exec_GTG\) ENABLED START[^]*?PROTECTED REGION END\*\/)/, `$1\n    ${cut[2]}`));
+                const report = writeTree(dir, tree, { displacedCode });
+                expect(report.errors).toEqual([]);
+                expect(report.orphaned).toEqual([]);
+                expect(report.warnings).toEqual([{ file: GTG, line: 11, message: expect.stringMatching(/^protected region protect_exec_NAV is no region of this file but of generated\/NAV_mod\/module\.c .*: its code was carried there/) }]);
+                expect(read(dir, NAV)).toContain(`ID(protect_exec_NAV) ENABLED START*/${code}/*PROTECTED REGION END*/`);
+                expect(read(dir, GTG)).toBe(module('GTG').content);
+                expect(existsSync(join(dir, 'orphans'))).toBe(false);
+            }
+        }
     });
 
     it('is orphaned, never lost, when its own file\'s region holds code of its own: the warning and the orphan name the file it belongs to and how to move it back', () => {

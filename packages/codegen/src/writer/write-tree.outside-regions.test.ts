@@ -47,6 +47,23 @@ describe('code written outside the protected regions', () => {
         expect([again.orphaned, again.warnings, again.filesWritten]).toEqual([[], [], 0]);
     });
 
+    it('a whitespace-only line holds no code: no edit outside the regions (generate and build alike), while a real line beside it still is one', () => {
+        for (const displacedCode of ['orphan', 'refuse'] as const) {
+            const dir = out();
+            writeTree(dir, [file()]);
+            write(dir, A, read(dir, A).replace('int step(void);\n', 'int step(void);\n    \n\t\n'));
+            const r = writeTree(dir, [file()], { displacedCode });
+            expect([r.errors, r.orphaned, r.warnings]).toEqual([[], [], []]);
+            expect(read(dir, A)).toBe(file().content);
+        }
+        const dir = out();
+        writeTree(dir, [file()]);
+        write(dir, A, read(dir, A).replace('int step(void);\n', 'int step(void);\n    \nint mine;\n'));
+        const r = writeTree(dir, [file()]);
+        expect(r.orphaned).toEqual([`orphans/${A}`]);
+        expect(r.warnings[0]!.message).toMatch(/^edited outside its protected regions \(line 5 not written by the generator\)/);
+    });
+
     it('also when the model changed the generated code around the edit', () => {
         const dir = out();
         writeTree(dir, [file()]);

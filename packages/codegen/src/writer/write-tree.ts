@@ -5,7 +5,7 @@ import { fillRegions, planMisplacedRegions, withoutForeignRegions } from '../reg
 import { scanRegions } from '@contract-studio/conventions';
 import { RegionSyntaxError } from '../regions/region-error.js';
 import { bytesOf, toByteString } from './byte-string.js';
-import { decodeLineHashes, describeEdits, editsOutside, runsText, skeletonLines } from './skeleton-lines.js';
+import { blankLines, decodeLineHashes, describeEdits, editsOutside, regionLineHashes, runsText, skeletonLines } from './skeleton-lines.js';
 import { linesNotRegenerated } from './outside-regions.js';
 import { CONFLICTED, MANIFEST_NAME, fileRecord, hasCrlfEndings, hashContent, loadManifest, looksLikeDefault, manifestTextLike, serialiseManifest, skeletonHash, unreadableManifestAdvice, type ManifestLoad } from './manifest.js';
 import { ORPHANS_DIR, fileOrphanText, regionOrphanText, writeOrphan } from './orphans.js';
@@ -74,11 +74,16 @@ export function firstDifferingLine(a: string, b: string): number {
  * Where `existing` was written outside its regions: the lines that are not the generator's, from
  * the line hashes the manifest recorded when it wrote the file (skeleton-lines.ts); without them
  * (an older manifest), the first line that differs from the regenerated file `regenerated`.
+ * Undefined when the line hashes say that nothing but what loses no code differs: whitespace-only
+ * lines, and the lines of regions `carriedHome` (cut from this file, their code carried back).
  */
-function whereEditedOutside(existing: string, file: string, recordedLines: string | undefined, regenerated: string): { line: number; where: string } {
+function whereEditedOutside(existing: string, file: string, recordedLines: string | undefined, regenerated: string, carriedHome: Iterable<string>): { line: number; where: string } | undefined {
     if (recordedLines !== undefined) {
-        const described = describeEdits(editsOutside(decodeLineHashes(recordedLines), skeletonLines(existing, file)));
+        const homeLines = regionLineHashes(regenerated, `${file} (generated output)`, carriedHome);
+        const edits = editsOutside(decodeLineHashes(recordedLines), skeletonLines(existing, file), { written: blankLines(existing), removed: (h) => homeLines.has(h) });
+        const described = describeEdits(edits);
         if (described.line !== undefined) return { line: described.line, where: described.where };
+        if (edits.excused > 0) return undefined;
     }
     const line = firstDifferingLine(existing, regenerated);
     return { line, where: `first line that differs from the regenerated file: ${line}` };
@@ -364,8 +369,11 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             };
             if (recorded !== undefined) {
                 const skeleton = ownSkeleton();
-                if (skeleton !== recorded && skeleton !== record.skeleton) {
-                    const { line, where } = whereEditedOutside(existing, file.path, loaded.manifest?.skeletonLines.get(file.path), merged.text);
+                const edited = skeleton !== recorded && skeleton !== record.skeleton
+                    ? whereEditedOutside(existing, file.path, loaded.manifest?.skeletonLines.get(file.path), merged.text, carriedIn?.keys() ?? [])
+                    : undefined;
+                if (edited) {
+                    const { line, where } = edited;
                     displaced.push({
                         line,
                         what: `edited outside its protected regions (${where})`,
