@@ -28,6 +28,13 @@ export interface Manifest {
      * (skeleton-lines.ts): says which lines were written outside the regions. Optional, as above.
      */
     skeletonLines?: Record<string, string>;
+    /**
+     * path -> the IDs of its protected regions that held something else than their default (user
+     * code) when the generator last wrote or kept the file; only files with such regions are
+     * listed. Tells that a generated file now missing held code (deleted by hand): the generation
+     * says so, and how to get it back. Optional, as above.
+     */
+    userCode?: Record<string, string[]>;
 }
 
 /** A loaded manifest: only entries whose path passed the checks (safe-paths.ts). */
@@ -38,6 +45,8 @@ export interface LoadedManifest {
     skeletons: Map<string, string>;
     /** path -> encoded line hashes of the skeleton, for the paths of `skeletons` that have well-formed ones. */
     skeletonLines: Map<string, string>;
+    /** path -> the region IDs that held user code (Manifest.userCode), for the paths of `files` that have a well-formed list. */
+    userCode: Map<string, string[]>;
 }
 
 export function hashContent(content: string): string {
@@ -188,11 +197,31 @@ export function loadManifest(tree: OutputTree): ManifestLoad {
             }
         }
     }
-    return { manifest: { files, skeletons, skeletonLines: skeletonLineTable }, problems };
+    const userCode = new Map<string, string[]>();
+    const held = (data as { userCode?: unknown }).userCode;
+    if (typeof held === 'object' && held !== null && !Array.isArray(held)) {
+        for (const [path, ids] of Object.entries(held)) {
+            if (files.has(path) && Array.isArray(ids) && ids.length <= MAX_USER_CODE_REGIONS && ids.every((id) => typeof id === 'string' && REGION_ID.test(id))) userCode.set(path, ids as string[]);
+        }
+    }
+    return { manifest: { files, skeletons, skeletonLines: skeletonLineTable, userCode }, problems };
 }
 
-/** Deterministic JSON text of a manifest (sorted paths); skeleton hashes and line hashes only for listed files. */
-export function serialiseManifest(files: Map<string, Record<string, string>>, skeletons?: Map<string, string>, skeletonLineTable?: Map<string, string>): string {
+/** What a region ID in Manifest.userCode looks like (the generator's IDs); anything else is ignored. */
+const REGION_ID = /^[A-Za-z_][A-Za-z0-9_]{0,254}$/;
+/** More regions than a generated file has: such a list is ignored. */
+const MAX_USER_CODE_REGIONS = 10_000;
+
+/**
+ * The IDs of the regions of `text` (a generated file as written, well formed) whose content is not
+ * their default of `defaults` (user code), in the file's order: Manifest.userCode.
+ */
+export function regionsHoldingCode(text: string, file: string, defaults: Record<string, string>): string[] {
+    return parseRegions(text, file).regions.filter((r) => defaults[r.id] !== undefined && defaults[r.id] !== hashContent(r.content)).map((r) => r.id);
+}
+
+/** Deterministic JSON text of a manifest (sorted paths); skeleton hashes, line hashes and the regions holding user code only for listed files (the last only when some file has such regions). */
+export function serialiseManifest(files: Map<string, Record<string, string>>, skeletons?: Map<string, string>, skeletonLineTable?: Map<string, string>, userCode?: Map<string, string[]>): string {
     const sorted: Record<string, Record<string, string>> = {};
     const paths = [...files.keys()].sort();
     for (const path of paths) sorted[path] = files.get(path)!;
@@ -213,6 +242,8 @@ export function serialiseManifest(files: Map<string, Record<string, string>>, sk
         }
         manifest.skeletonLines = sortedLines;
     }
+    const held = paths.filter((path) => (userCode?.get(path)?.length ?? 0) > 0);
+    if (held.length > 0) manifest.userCode = Object.fromEntries(held.map((path) => [path, userCode!.get(path)!]));
     return JSON.stringify(manifest, null, 1) + '\n';
 }
 

@@ -20,6 +20,13 @@ function candidate(path: string, n: number): string {
     return posix.join(dir, name);
 }
 
+/** The orphans of `path` there are in the tree (`orphans/<path>`, `.2.`, ...), in the order they were written. */
+export function existingOrphans(tree: OutputTree, path: string): string[] {
+    const found: string[] = [];
+    for (let n = 1; n <= 1000 && tree.stat(candidate(path, n)) !== undefined; n++) found.push(candidate(path, n));
+    return found;
+}
+
 /**
  * Writes orphaned content (a byte string) for `path` without ever overwriting an earlier orphan:
  * the first free numbered name is used; an existing orphan with the very same content is reused.

@@ -204,7 +204,8 @@ function rewriteRegions(tree: OutputTree, rel: string, { from, to, renameId }: C
 }
 
 /**
- * The manifest's paths and region IDs follow the carry-over, so moved defaults stay recognised;
+ * The manifest's paths and region IDs follow the carry-over, so moved defaults (and the record of
+ * the regions holding user code) stay recognised;
  * a skeleton hash that matched the file before its region IDs were rewritten is replaced by the
  * rewritten file's (the carry-over is no edit outside the regions); one that did not match stays
  * (the user's edit outside the regions is still reported at the next generation).
@@ -227,8 +228,11 @@ function carryManifest(tree: OutputTree, loaded: ManifestLoad, { from, to, renam
     const files = new Map<string, Record<string, string>>();
     const skeletons = new Map<string, string>();
     const lineTable = new Map<string, string>();
+    const userCode = new Map<string, string[]>();
     for (const [path, regions] of loaded.manifest.files) {
         const moved = movePath(path);
+        const held = loaded.manifest.userCode.get(path);
+        if (held) userCode.set(moved, held.map(renameId));
         const carry = carries.get(moved);
         const ids: Record<string, string> = {};
         for (const [id, hash] of Object.entries(regions)) {
@@ -251,7 +255,7 @@ function carryManifest(tree: OutputTree, loaded: ManifestLoad, { from, to, renam
         if (lines !== undefined) lineTable.set(moved, lines);
     }
     // in the line-ending style of the manifest it replaces (a CRLF checkout's stays CRLF), as generate writes it
-    tree.write(MANIFEST_NAME, Buffer.from(manifestTextLike(tree.read(MANIFEST_NAME), serialiseManifest(files, skeletons, lineTable)), 'utf8'));
+    tree.write(MANIFEST_NAME, Buffer.from(manifestTextLike(tree.read(MANIFEST_NAME), serialiseManifest(files, skeletons, lineTable, userCode)), 'utf8'));
 }
 
 /**

@@ -2,13 +2,13 @@ import { posix } from 'node:path';
 import { mergeRegions, userRegions } from '../regions/merge-regions.js';
 import { carryRenamedRegions, type GeneratedOutput } from '../regions/carry-renamed-regions.js';
 import { fillRegions, planMisplacedRegions, withoutForeignRegions } from '../regions/misplaced-regions.js';
-import { scanRegions } from '@contract-studio/conventions';
+import { SRC_GEN_DIR, scanRegions } from '@contract-studio/conventions';
 import { RegionSyntaxError } from '../regions/region-error.js';
 import { bytesOf, toByteString } from './byte-string.js';
 import { blankLines, decodeLineHashes, describeEdits, editsOutside, regionLineHashes, runsText, skeletonLines } from './skeleton-lines.js';
 import { linesNotRegenerated } from './outside-regions.js';
-import { CONFLICTED, MANIFEST_NAME, fileRecord, hasCrlfEndings, hashContent, loadManifest, looksLikeDefault, manifestTextLike, serialiseManifest, skeletonHash, unreadableManifestAdvice, type ManifestLoad } from './manifest.js';
-import { ORPHANS_DIR, fileOrphanText, regionOrphanText, writeOrphan } from './orphans.js';
+import { CONFLICTED, MANIFEST_NAME, fileRecord, hasCrlfEndings, hashContent, loadManifest, looksLikeDefault, manifestTextLike, regionsHoldingCode, serialiseManifest, skeletonHash, unreadableManifestAdvice, type ManifestLoad } from './manifest.js';
+import { ORPHANS_DIR, existingOrphans, fileOrphanText, regionOrphanText, writeOrphan } from './orphans.js';
 import { OutputTree } from './output-tree.js';
 import { emptyReport, type GenerationReport } from './report.js';
 import { UnsafePathError } from './safe-paths.js';
@@ -209,6 +209,8 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     const newManifest = new Map<string, Record<string, string>>();
     const newSkeletons = new Map<string, string>();
     const newSkeletonLines = new Map<string, string>();
+    /** path -> the IDs of its regions holding user code as written or kept by this generation (Manifest.userCode). */
+    const newUserCode = new Map<string, string[]>();
     /** The skeleton hash recorded when the file was last written (undefined: no manifest, an older or unreadable one). */
     const recordedSkeleton = (p: string) => loaded.manifest?.skeletons.get(p);
     /** Why a file has no recorded skeleton, as a clause. */
@@ -228,6 +230,9 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         const lines = loaded.manifest?.skeletonLines.get(path);
         if (lines !== undefined) newSkeletonLines.set(path, lines);
         else newSkeletonLines.delete(path);
+        const held = loaded.manifest?.userCode.get(path);
+        if (held !== undefined) newUserCode.set(path, held);
+        else newUserCode.delete(path);
     };
     const sorted = [...files].sort((a, b) => (a.path < b.path ? -1 : a.path > b.path ? 1 : 0));
     const produced = new Set(sorted.map((f) => f.path));
@@ -318,8 +323,11 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             let existing = readExisting(file.path);
             if (existing === undefined) {
                 const text = carriedIn ? fillRegions(generated, file.path, carriedIn) : generated;
+                const lost = deletedUserCode(tree, file.path, loaded.manifest?.userCode.get(file.path), carriedIn);
+                if (lost) report.warnings.push({ file: file.path, message: lost });
                 tree.write(file.path, bytesOf(text));
                 onDisk.set(file.path, text);
+                if (carriedIn) newUserCode.set(file.path, regionsHoldingCode(text, file.path, record.defaults));
                 report.created.push(file.path);
                 report.filesWritten++;
                 continue;
@@ -444,6 +452,8 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                     message: `is ${merged.text.length} bytes with its protected regions, above the ${MAX_SOURCE_BYTES} a build reads of a project's file (and the IDE opens): contract build and Build & Run will refuse the project; keep large data out of the regions (a file the code reads)`,
                 });
             }
+            const held = merged.text === generated ? [] : regionsHoldingCode(merged.text, file.path, record.defaults);
+            if (held.length > 0) newUserCode.set(file.path, held);
             if (merged.text === original) {
                 report.unchanged.push(file.path);
             } else {
@@ -516,7 +526,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         try {
             const previous = tree.read(MANIFEST_NAME);
             // a CRLF checkout's manifest keeps its line endings (as the C files do): not rewritten for them alone
-            const manifestText = manifestTextLike(previous, serialiseManifest(newManifest, newSkeletons, newSkeletonLines));
+            const manifestText = manifestTextLike(previous, serialiseManifest(newManifest, newSkeletons, newSkeletonLines, newUserCode));
             if (previous !== manifestText) {
                 tree.write(MANIFEST_NAME, Buffer.from(manifestText, 'utf8'));
                 report.filesWritten++;
@@ -530,6 +540,20 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     for (const list of [report.created, report.updated, report.unchanged]) list.sort();
     refusals.report(report);
     return report;
+}
+
+/**
+ * What to say of generated file `path`, missing from the tree (deleted by hand?) though the
+ * manifest recorded that its regions `held` code when it was last generated (Manifest.userCode),
+ * but those whose code comes back from another file (`carriedIn`): it is generated with the
+ * defaults, and the warning names the regions and how to get the code back. Undefined when none held code.
+ */
+function deletedUserCode(tree: OutputTree, path: string, held: readonly string[] | undefined, carriedIn: ReadonlyMap<string, string> | undefined): string | undefined {
+    const lost = (held ?? []).filter((id) => !carriedIn?.has(id));
+    if (lost.length === 0) return undefined;
+    const copies = existingOrphans(tree, path);
+    const copy = copies.length > 0 ? `; a copy of it orphaned earlier is in ${copies[copies.length - 1]}` : '';
+    return `was not there (deleted?), though its protected region(s) ${lost.join(', ')} held code when it was last generated: generated anew with the defaults, without that code. To get it back, restore the file (\`git checkout -- ${SRC_GEN_DIR}/${path}\` in the project folder, or \`git restore\`) and generate again${copy}`;
 }
 
 function recordFailure(report: GenerationReport, refusals: Refusals, path: string, e: unknown, consequence: string): void {
