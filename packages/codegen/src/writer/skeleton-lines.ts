@@ -86,6 +86,7 @@ export function skeletonLines(text: string, file: string, regions: Region[] = pa
  */
 export function regionLineHashes(text: string, file: string, ids: Iterable<string>): Set<number> {
     const wanted = new Set(ids);
+    if (wanted.size === 0) return new Set();
     const regions = parseRegions(text, file).regions;
     const lines = skeletonLines(text, file, regions);
     const out = new Set<number>();
