@@ -43,6 +43,9 @@
 
 #define MAX_MODULES CONTRACT_LAUNCHER_MAX_MODULES
 #define LINE_MAX_LEN 4096
+/* the exit status of a run whose --start could not be sent or was refused (no module failed): a
+ * service manager's Restart=on-failure sees it; 1 is a module that failed, 2 nothing started */
+#define EXIT_START_REFUSED 3
 
 /* One of a module's output streams: the read end of its pipe, and the line being gathered. */
 typedef struct {
@@ -710,7 +713,8 @@ static RTIME end_by_deadline(RTIME deadline, RTIME launched, double duration)
     return end;
 }
 
-/* --start 'SUP.function(p=v,...)' */
+/* --start 'SUP.function(p=v,...)': 0 when sent (started, or no acknowledgement within 2 s), -1 when it
+ * could not be (a bad spec, a supervisor not there) or the supervisor refused it (ACK_NOTDONE). */
 static int send_start(const char *spec)
 {
     char sup[CONTRACT_NAME_MAX], fn[CONTRACT_FUNCTION_MAX];
@@ -736,11 +740,12 @@ static int send_start(const char *spec)
     RequestMessage *ack = malloc(sizeof *ack);
     if (!ack) return -1;
     int r = WaitForAck(sup, 1, ACK_START | ACK_NOTDONE, GetTime() + 2000000000LL, ack);
-    if (r == 1 && ack->Param.Ack.Ack == ACK_NOTDONE) say("%s refused to start %s(%s)", sup, fn, args);
+    int refused = r == 1 && ack->Param.Ack.Ack == ACK_NOTDONE;
+    if (refused) say("%s refused to start %s(%s)", sup, fn, args);
     else if (r == 1) say("started %s.%s(%s)", sup, fn, args);
     else say("sent the start request to %s.%s(%s) (no acknowledgement within 2 s)", sup, fn, args);
     free(ack);
-    return 0;
+    return refused ? -1 : 0;
 }
 
 int main(int argc, char *argv[])
@@ -906,7 +911,7 @@ int main(int argc, char *argv[])
             stop = 1;
         }
     if (!stop) say("%d module(s) running", alive_count());
-    if (!stop && start && *start) send_start(start);
+    int start_failed = !stop && start && *start && send_start(start) != 0;
     if (!stop) {
         RTIME deadline = duration >= 0 ? now_ns() + (RTIME)(duration * 1e9) : INT64_MAX;
         deadline = end_by_deadline(deadline, launched, duration);
@@ -939,5 +944,5 @@ int main(int argc, char *argv[])
     else say("all modules stopped cleanly");
     if (pm_qos_fd >= 0) close(pm_qos_fd);
     clean_run_dir(run_dir); /* removes launcher.pid last: `--kill` waits for that */
-    return failed ? 1 : 0;
+    return failed ? 1 : start_failed ? EXIT_START_REFUSED : 0;
 }

@@ -283,6 +283,15 @@ void test_launcher_start_duration(void)
     CHECK(logs && strstr(logs, ",P,request_received,contract-launch,,23,START mission"));
     free(logs);
     CHECK(h_count_entries(h_run_dir) == -1);
+    /* a start the supervisor refuses: the run goes on to its end, then exits 3 (not 0: a service
+     * manager's Restart=on-failure must see that the robot did nothing) */
+    char *refused[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, "--duration", "1",
+                        "--start", "P.nosuch()", exe_p, NULL };
+    CHECK(h_run(refused, out, 8000) == 3);
+    text = h_read_file(out);
+    CHECK(text && strstr(text, "P refused to start nosuch()"));
+    CHECK(text && strstr(text, "all modules stopped cleanly"));
+    free(text);
     /* bad usage is reported, not a crash */
     char *bad[] = { "contract-launch", "--duration", "soon", exe_p, NULL };
     CHECK(h_run(bad, out, 3000) == 2);

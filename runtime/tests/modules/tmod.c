@@ -204,6 +204,13 @@ int ModuleMain(int argc, const char *argv[])
             }
             __attribute__((fallthrough));
         case REQ_START:
+            /* a function it does not have (as a supervisor refuses one): ACK_NOTDONE, nothing started */
+            if (strcmp(receivedMessage.Param.Start.Function, "nosuch") == 0) {
+                if ((receivedMessage.Param.Start.WantedAck & ACK_NOTDONE) != 0)
+                    SendAck(receivedMessage.Param.Start.ModAck, receivedMessage.Param.Start.WantedAck, ACK_NOTDONE, receivedMessage.Param.Start.AckID);
+                receivedMessage.Type = REQ_UNKNOWN;
+                break;
+            }
             if (cycleRunning == 0 && (receivedMessage.Param.Start.WantedAck & ACK_START) != 0)
                 SendAck(receivedMessage.Param.Start.ModAck, receivedMessage.Param.Start.WantedAck, ACK_START, receivedMessage.Param.Start.AckID);
             interact = 0;
