@@ -13,7 +13,7 @@ import { fileURLToPath } from 'node:url';
 export const PACKED_RUNTIME = resolve(dirname(fileURLToPath(import.meta.url)), '..', 'runtime');
 
 /** What of runtime/ a user's build needs: what the tarball carries and `contract runtime-source` copies (its tests and benchmarks stay in the repository). */
-export const RUNTIME_PARTS = ['Makefile', 'engines.mk', 'README.md', 'include', 'src', 'launcher', 'sim'] as const;
+export const RUNTIME_PARTS = ['Makefile', 'build-config.mk', 'installed.mk', 'engines.mk', 'README.md', 'include', 'src', 'launcher', 'sim'] as const;
 
 /** The packed runtime when there is one, else `checkoutDefault` (the package's own default: the repository's runtime/). */
 export function defaultRuntimeSource(checkoutDefault: string): string {

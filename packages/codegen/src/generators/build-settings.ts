@@ -29,11 +29,17 @@ export function runtimeSettings(): string {
  * runtime's and the tree's include folders, the runtime library) is always applied: `CFLAGS`,
  * `CPPFLAGS` or `LDLIBS` given on make's command line add to it (`override`), never drop it.
  * `CFLAGS` itself is the optimisation, debug and warning flags: given, it replaces them;
- * `EXTRA_CFLAGS` adds to them.
+ * `EXTRA_CFLAGS` adds to them. `CC` not given (make's own default, `cc`) is the compiler the runtime
+ * was built with (its `build/build-config`: a runtime cross-built is linked with the same cross gcc),
+ * else `gcc`, the runtime's default.
  */
 export function makeSettings(extraIncludes: string[]): string {
     return [
         runtimeSettings(),
+        "# the compiler: CC=... given, else the runtime's (the one its build/build-config records), else gcc",
+        'ifeq ($(origin CC),default)',
+        "CC := $(or $(shell sed -n 's/^BUILT_CC := //p' $(CONTRACT_RUNTIME)/build/build-config 2>/dev/null),gcc)",
+        'endif',
         '# the language and what the generated C needs: always given (CFLAGS and CPPFLAGS add to them)',
         'CONTRACT_CFLAGS = -std=c11',
         `CONTRACT_CPPFLAGS = -D_POSIX_C_SOURCE=200809L -I$(CONTRACT_RUNTIME)/include ${extraIncludes.map((i) => `-I${i}`).join(' ')}`,
