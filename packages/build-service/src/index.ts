@@ -19,4 +19,5 @@ export { describeIssues, type RunIssue, type RunIssueKind } from './pipeline/run
 export { LauncherCrashes, type LauncherFailure } from './pipeline/launcher-crashes.js';
 export { CRASH_MARK, crashSiteOfLine } from './pipeline/crash-reports.js';
 export { foreignMakefilesMessage } from './pipeline/foreign-makefiles.js';
+export { installedRuntimeProblem } from './pipeline/runtime-cache.js';
 export type { SweepPolicy, SweepReport } from './sandbox/docker-sweep.js';

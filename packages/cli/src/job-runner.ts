@@ -8,7 +8,7 @@ import { existsSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { stat } from 'node:fs/promises';
 import type { GccDiagnostic, Job, JobEvent, JobResult, JobService as JobServiceType, SandboxChoice } from '@contract-studio/build-service';
-import { CRASH_MARK, crashSiteOfLine, foreignMakefilesMessage, renderDiagnostic } from '@contract-studio/build-service';
+import { CRASH_MARK, crashSiteOfLine, foreignMakefilesMessage, installedRuntimeProblem, renderDiagnostic } from '@contract-studio/build-service';
 import { folderOption, type ParsedArgs } from './args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO } from './command.js';
 import { addLimitOption, DEFAULT_PROCESS_LIMIT, emptyLimitOptions, modulesUnderProcessLimit, RENAME_JOURNAL_NAME, SANDBOX_CHOICES, SRC_GEN_DIR, withoutStuckAdvice, type LimitOptions } from '@contract-studio/conventions';
@@ -92,6 +92,9 @@ export async function parseJobOptions(parsed: ParsedArgs, io: CliIO, isTTY: bool
     const runtimeOption = options.get('runtime');
     const runtime = typeof runtimeOption === 'string' ? resolve(io.cwd, runtimeOption) : process.env.CONTRACT_RUNTIME || undefined;
     if (runtime && !existsSync(join(runtime, 'Makefile'))) throw new UsageError(`${runtime} is not a runtime folder (no Makefile); pass --runtime PATH to the ContrACT runtime/`);
+    // an installed runtime (make install PREFIX=...) has no sources to build: refused before any build
+    const installed = runtime && installedRuntimeProblem(runtime, typeof runtimeOption === 'string' ? `--runtime ${runtime}` : `CONTRACT_RUNTIME=${runtime}`);
+    if (installed) throw new UsageError(installed);
     const cacheDir = folderOption(options, 'cache-dir', io.cwd);
     return { dir, dirArg, sandbox, format, verbose: options.get('verbose') === true, progress: isTTY && format === 'text', runtime, cacheDir };
 }

@@ -73,4 +73,23 @@ describe('contract runtime-source DIR', () => {
         execFileSync('make', ['-s', '-C', rt, 'install', `PREFIX=${join(root, 'opt-runtime')}`, 'CFLAGS=-O0'], { stdio: 'pipe' });
         for (const f of ['include/libmodule/libmodule.h', 'build/libmodule.a', 'build/contract-launch']) expect(existsSync(join(root, 'opt-runtime', f)), f).toBe(true);
     }, 180_000);
+
+    it('contract build refuses an installed runtime (no sources) named by CONTRACT_RUNTIME or --runtime, before any build', async () => {
+        const installed = join(root, 'opt-runtime');
+        expect(existsSync(join(installed, 'build', 'libmodule.a'))).toBe(true);
+        const saved = process.env.CONTRACT_RUNTIME;
+        process.env.CONTRACT_RUNTIME = installed;
+        try {
+            const io = capture(root);
+            expect(await runCli(['build', '.'], io)).toBe(2);
+            expect(io.stderr).toContain(`CONTRACT_RUNTIME=${installed} names an installed runtime, which has no sources (no src/ beside its build/): contract build builds the runtime from its sources, for the compiler it uses; unset it, or name a runtime source folder`);
+            expect(io.stderr).not.toContain('No rule to make target');
+        } finally {
+            if (saved === undefined) delete process.env.CONTRACT_RUNTIME;
+            else process.env.CONTRACT_RUNTIME = saved;
+        }
+        const option = capture(root);
+        expect(await runCli(['build', '.', '--runtime', installed], option)).toBe(2);
+        expect(option.stderr).toContain(`--runtime ${installed} names an installed runtime`);
+    });
 });

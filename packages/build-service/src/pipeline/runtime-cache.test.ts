@@ -10,7 +10,7 @@ import { tmpdir } from 'node:os';
 import { basename, join } from 'node:path';
 import { afterAll, describe, expect, test } from 'vitest';
 import { SERVICE_BOUNDS } from '../limits.js';
-import { RuntimeCache, toolchainIdentity } from './runtime-cache.js';
+import { installedRuntimeProblem, RuntimeCache, toolchainIdentity } from './runtime-cache.js';
 
 const scratch = mkdtempSync(join(tmpdir(), 'runtime-cache-test-'));
 chmodSync(scratch, 0o711);
@@ -67,6 +67,31 @@ describe('RuntimeCache', () => {
     expect(after).not.toBe(before);
     runtimeSources(source, 1);
     expect(await new RuntimeCache(source, cacheDir).ensure(log)).toBe(before);
+  });
+
+  test('a make that builds nothing (no build/libmodule.a) fails and is never cached as built', async () => {
+    const empty = join(scratch, 'builds-nothing');
+    mkdirSync(join(empty, 'include'), { recursive: true });
+    writeFileSync(join(empty, 'Makefile'), 'all:\n\t@true\n');
+    const cache = join(scratch, 'cache-empty', 'runtime');
+    await expect(new RuntimeCache(empty, cache).ensure(log)).rejects.toThrow(/runtime build failed: make -C .* ended without producing build\/libmodule\.a and build\/contract-launch/);
+    // the next job builds again (and fails again), not "already built"
+    lines.length = 0;
+    await expect(new RuntimeCache(empty, cache).ensure(log)).rejects.toThrow(/runtime build failed/);
+    expect(lines.join('\n')).not.toContain('already built');
+    expect(readdirSync(cache).filter((n) => n.startsWith('runtime-'))).toEqual([]);
+  });
+
+  test('an installed runtime (build/ products, no src/) is refused before any build, saying what to give instead', async () => {
+    const installed = join(scratch, 'installed');
+    mkdirSync(join(installed, 'build'), { recursive: true });
+    writeFileSync(join(installed, 'build', 'libmodule.a'), '!<arch>\n');
+    writeFileSync(join(installed, 'Makefile'), 'all:\n\t@true\n');
+    expect(installedRuntimeProblem(source, 'CONTRACT_RUNTIME')).toBeUndefined();
+    expect(installedRuntimeProblem(installed, `CONTRACT_RUNTIME=${installed}`)).toMatch(/^CONTRACT_RUNTIME=.* names an installed runtime, which has no sources .*: contract build builds the runtime from its sources, .*; unset it, or name a runtime source folder/);
+    lines.length = 0;
+    await expect(new RuntimeCache(installed, join(scratch, 'cache-installed', 'runtime')).ensure(log)).rejects.toThrow(/names an installed runtime, which has no sources/);
+    expect(lines.join('\n')).not.toContain('building the runtime');
   });
 
   test('a build folder without its completion stamp (a killed build) is rebuilt, not trusted', async () => {

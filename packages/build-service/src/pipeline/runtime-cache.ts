@@ -43,6 +43,17 @@ export function toolchainIdentity(): string {
   return toolchainCache;
 }
 
+/**
+ * Why `dir` cannot be built as a runtime: it is an installed one (`make install PREFIX=...`: its
+ * include/ and build/ products, a Makefile that builds nothing, no src/), whose products the cache
+ * would take as built from nothing; undefined for a source folder. `named` says where the folder
+ * came from (`CONTRACT_RUNTIME=/opt/contract/runtime`, `--runtime ...`).
+ */
+export function installedRuntimeProblem(dir: string, named: string): string | undefined {
+  if (existsSync(join(dir, 'src')) || !existsSync(join(dir, 'build', 'libmodule.a'))) return undefined;
+  return `${named} names an installed runtime, which has no sources (no src/ beside its build/): contract build builds the runtime from its sources, for the compiler it uses; unset it, or name a runtime source folder (the runtime/ of ContrACT Studio, or one that contract runtime-source DIR copies)`;
+}
+
 /** The runtime's sources: what make needs (test outputs, CSV logs, objects are left out). */
 const SOURCE = /(\.(c|h|mk|def|S|sh)|(^|\/)Makefile)$/;
 const SKIP_DIRS = /^(build|logs|run)$|(^|\/)\.git$/;
@@ -91,6 +102,8 @@ export class RuntimeCache {
     if (!existsSync(join(this.sourceDir, 'Makefile'))) {
       throw new Error(`no runtime at ${this.sourceDir} (expected a Makefile producing build/libmodule.a and build/contract-launch)`);
     }
+    const installed = installedRuntimeProblem(this.sourceDir, `the runtime folder ${this.sourceDir}`);
+    if (installed) throw new Error(installed);
     const files = await listFilesNoFollow(this.sourceDir, (rel, isDir) => (isDir ? !SKIP_DIRS.test(rel) : SOURCE.test(rel)));
     const hash = createHash('sha256').update(toolchainIdentity()).update('\0');
     const contents = new Map<string, Buffer>();
@@ -202,9 +215,10 @@ export class RuntimeCache {
       child.on('error', reject);
       child.on('close', (code, signal) => (code === 0 ? resolve() : reject(new Error(this.closed ? 'the build service is closing: the runtime build was stopped' : `runtime build failed (make ${signal ? `killed by ${signal}` : `exit ${code}`})`))));
     });
-    for (const needed of ['build/libmodule.a', 'build/contract-launch']) {
-      if (!existsSync(join(dir, needed))) onLine(`warning: the runtime build did not produce ${needed}`, 'stderr');
-    }
+    // a make that ends well without them (a Makefile that builds nothing) is a failed build: never
+    // stamped "built", or every later job would link against nothing
+    const missing = ['build/libmodule.a', 'build/contract-launch'].filter((needed) => !existsSync(join(dir, needed)));
+    if (missing.length > 0) throw new Error(`runtime build failed: make -C ${this.sourceDir} ended without producing ${missing.join(' and ')} (is it a runtime source folder?)`);
   }
 }
 
