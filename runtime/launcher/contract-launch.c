@@ -113,6 +113,7 @@ static void usage(void)
             "usage: contract-launch [--run-dir DIR] [--log-dir DIR] [--start 'SUP.function(p=v,...)']\n"
             "                       [--duration SECONDS] [--ready-timeout SECONDS] [--stop-first 'NAME ...']\n"
             "                       [--cpus LIST] [--pm-qos-us N] [--require-realtime] EXECUTABLE...\n"
+            "       contract-launch --check-realtime [--require-realtime]\n"
             "       contract-launch --kill RUN_DIR\n"
             "       contract-launch --term-why CODE PID\n");
 }
@@ -769,6 +770,7 @@ int main(int argc, char *argv[])
     RTIME launched = now_ns();
     double duration = -1, ready_timeout = 10;
     int require_realtime = rt_realtime_required();
+    int check_only = 0; /* --check-realtime: only the real-time check, nothing started */
     int i = 1;
     for (; i < argc; i++) {
         const char *a = argv[i];
@@ -782,6 +784,7 @@ int main(int argc, char *argv[])
         }
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { usage(); return 0; }
         if (strcmp(a, "--require-realtime") == 0) { require_realtime = 1; continue; }
+        if (strcmp(a, "--check-realtime") == 0) { check_only = 1; continue; }
         if (a[0] != '-' || strcmp(a, "--") == 0) { if (strcmp(a, "--") == 0) i++; break; }
         if (i + 1 >= argc) { say("option %s needs a value", a); usage(); return 2; }
         const char *v = argv[++i];
@@ -811,6 +814,7 @@ int main(int argc, char *argv[])
         if (check_realtime_permitted() != 0) return 2;
         setenv(CONTRACT_REQUIRE_REALTIME_ENV, "1", 1); /* each module asks it at its own priority (priority.c) */
     }
+    if (check_only) return 0;
     if (i >= argc) { say("no module executable given"); usage(); return 2; }
     if (argc - i > MAX_MODULES) { say("too many modules: %d module executables given, at most %d (ORD and the supervisors count)", argc - i, MAX_MODULES); return 2; }
     for (int k = i; k < argc; k++) {

@@ -6,7 +6,7 @@
  * `true` and `all` taken as made (`-o all`): only the move is exercised. With the launcher replaced
  * by `echo`, the second test reads the command line: the supervisors are given to `--stop-first`.
  */
-import { spawnSync } from 'node:child_process';
+import { execFileSync, spawnSync } from 'node:child_process';
 import { chmodSync, cpSync, existsSync, mkdirSync, readdirSync, utimesSync, writeFileSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -120,6 +120,28 @@ describe('make run: REQUIRE_REALTIME', () => {
         expect(run().stdout).not.toContain('--require-realtime');
         expect(run('REQUIRE_REALTIME=0').stdout).not.toContain('--require-realtime');
     });
+});
+
+describe('make run: REQUIRE_REALTIME refused', () => {
+    it('leaves the previous run\'s logs in LOG_DIR: real time is checked (contract-launch --check-realtime) before they are moved', () => {
+        execFileSync('make', ['-s', '-C', join(REPO, 'runtime'), 'build/contract-launch'], { stdio: 'pipe' });
+        const arch = join(root, 'realtime-refused');
+        mkdirSync(arch);
+        cpSync(MAKEFILE, join(arch, 'Makefile'));
+        const logs = join(root, 'realtime-refused-logs');
+        mkdirSync(logs);
+        log(logs, 'MAA_28-Nov-2026-09h30m05s.csv', new Date(2026, 10, 28, 9, 30, 5));
+        // CONTRACT_SCHED=other contradicts the requirement: refused here even as root
+        const r = spawnSync('make', ['-s', '-o', 'all', 'run', 'REQUIRE_REALTIME=1', `LOG_DIR=${logs}`, `CONTRACT_RUNTIME=${join(REPO, 'runtime')}`], {
+            cwd: arch,
+            encoding: 'utf8',
+            env: { ...process.env, CONTRACT_SCHED: 'other' },
+        });
+        expect(r.status, r.stderr).toBe(2);
+        expect(r.stderr).toContain('contract-launch: real-time is required');
+        expect(r.stderr).not.toContain('previous run');
+        expect(readdirSync(logs)).toEqual(['MAA_28-Nov-2026-09h30m05s.csv']);
+    }, 120_000);
 });
 
 describe('make run: the supervisors stop first', () => {

@@ -25,7 +25,8 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         #   make run      run the architecture: make run [START='SUP.fn(p={1.0,2.0})'] [DURATION=10] [RUN_DIR=dir] [LOG_DIR=dir]
         #                 [CPUS=1] (pin every module to these CPUs) [PM_QOS_US=0] (hold CPU wake-up latency; root)
         #                 [READY_TIMEOUT=10] (seconds every module's init may take before the start; else the run stops)
-        #                 [REQUIRE_REALTIME=1] (refuse to run unless the modules may run at SCHED_FIFO; also CONTRACT_REQUIRE_REALTIME=1)
+        #                 [REQUIRE_REALTIME=1] (refuse to run unless the modules may run at SCHED_FIFO; also CONTRACT_REQUIRE_REALTIME=1;
+        #                 checked before the logs are moved: a refused run leaves them in LOG_DIR)
         #                 one run per LOG_DIR, as contract run: the CSV logs of the run before are moved to
         #                 LOG_DIR/previous/run-<time of the newest>/ first (never deleted)
         #                 stopping (DURATION, Ctrl-C, make kill) stops the SUPERVISORS first, then the others:
@@ -59,6 +60,7 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         	$(MAKE) -C tools -f Makefile CONTRACT_RUNTIME=$(RUNTIME)
 
         run: all
+        	$(if $(filter 1,$(REQUIRE_REALTIME) $(CONTRACT_REQUIRE_REALTIME)),@$(LAUNCH) --check-realtime --require-realtime)
         	@if ls '$(LOG_DIR)'/*.csv >/dev/null 2>&1; then \\
         	  to='$(LOG_DIR)'/previous/run-$$(date -r "$$(ls -t '$(LOG_DIR)'/*.csv | head -n 1)" +%Y-%m-%dT%H-%M-%S); \\
         	  at="$$to"; n=2; while [ -e "$$to" ]; do to="$$at-$$n"; n=$$((n + 1)); done; \\
