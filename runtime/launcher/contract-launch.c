@@ -90,6 +90,10 @@ static const char *stop_reason(int code)
     default: return NULL;
     }
 }
+/* The value `contract-launch --kill` (make kill) queues with its SIGTERM: no stop reason of the build
+ * service (stop_reason), so that the launcher it stops can say the stop came from make kill. */
+#define KILL_MODE_SIGNAL_VALUE 7007
+static char stop_cause[200];    /* what stopped the run, for the `stopping: ...` line */
 static RTIME stop_budget_ns;    /* CONTRACT_STOP_BUDGET_MS: a stop by a signal fits in it (stop_waits) */
 static double end_by_s;         /* CONTRACT_END_BY_S: the run stops this long after the launch at the latest */
 static const char *stop_first;  /* --stop-first: names, separated by spaces or commas */
@@ -253,7 +257,7 @@ static int kill_mode(const char *dir)
     snprintf(path, sizeof path, "%s/launcher.pid", dir);
     long lp = read_pid_file(path);
     if (lp > 0 && kill((pid_t)lp, 0) == 0) {
-        kill((pid_t)lp, SIGTERM);
+        if (sigqueue((pid_t)lp, SIGTERM, (union sigval){ .sival_int = KILL_MODE_SIGNAL_VALUE }) != 0) kill((pid_t)lp, SIGTERM);
         for (int i = 0; i < 300 && process_running(lp); i++) usleep(50000);
         if (process_running(lp)) { say("launcher %ld did not stop within 15 s", lp); return 1; }
         say("stopped the architecture of %s", dir);
@@ -530,6 +534,28 @@ static void drain_output(void)
     }
 }
 
+/* Who sent a stop signal, in words: `make kill (contract-launch --kill, pid N)`, `SIGINT from the
+ * terminal` (pid 0: the terminal's Ctrl-C, or the kernel's), `SIGTERM from module ORD (pid N)` (a
+ * module passes a stop signal it got on to the launcher), `SIGTERM from pid N`. */
+static void describe_stop_signal(const struct signalfd_siginfo *si, char *buf, size_t size)
+{
+    const char *name = si->ssi_signo == SIGINT ? "SIGINT" : si->ssi_signo == SIGHUP ? "SIGHUP" : "SIGTERM";
+    if (si->ssi_signo == SIGTERM && si->ssi_code == SI_QUEUE && si->ssi_int == KILL_MODE_SIGNAL_VALUE) {
+        snprintf(buf, size, "make kill (contract-launch --kill, pid %u)", si->ssi_pid);
+        return;
+    }
+    if (si->ssi_pid == 0) {
+        snprintf(buf, size, "%s%s", name, si->ssi_signo == SIGTERM ? "" : " from the terminal");
+        return;
+    }
+    for (int i = 0; i < n_children; i++)
+        if ((uint32_t)children[i].pid == si->ssi_pid) {
+            snprintf(buf, size, "%s from module %s (pid %u)", name, children[i].name, si->ssi_pid);
+            return;
+        }
+    snprintf(buf, size, "%s from pid %u", name, si->ssi_pid);
+}
+
 /* A stop signal while the run already stops (a service manager's stop sends SIGTERM to make, the
  * launcher and every module at once: make passes its own on, each module started by the launcher
  * passes its own on too, core.c): the stop goes on as it is, supervisors first, bounded by its
@@ -538,9 +564,9 @@ static void stop_signal_while_stopping(const struct signalfd_siginfo *si)
 {
     static int said;
     if (said++) return;
-    const char *name = si->ssi_signo == SIGINT ? "SIGINT" : si->ssi_signo == SIGHUP ? "SIGHUP" : "SIGTERM";
-    say("%s (from pid %u) while the run stops: the stop goes on in order (the supervisors first, then the others)",
-        name, si->ssi_pid);
+    char who[160];
+    describe_stop_signal(si, who, sizeof who);
+    say("%s while the run stops: the stop goes on in order (the supervisors first, then the others)", who);
 }
 
 /* Poll outputs and signals until `deadline`, until `reached()` (may be NULL) or until stop is asked.
@@ -573,6 +599,7 @@ static int run_loop(int sfd, RTIME deadline, int (*reached)(void))
                 else {
                     stop = stop_signalled = 1;
                     if (si.ssi_signo == SIGTERM && si.ssi_code == SI_QUEUE && !stop_why) stop_why = stop_reason(si.ssi_int);
+                    if (!stop_cause[0]) describe_stop_signal(&si, stop_cause, sizeof stop_cause);
                 }
             }
         }
@@ -905,7 +932,7 @@ int main(int argc, char *argv[])
             say("module %s is not ready after %g s: its init has not returned (does its init region loop or block?); the run stops without its start request",
                 children[k].name, ready_timeout);
         }
-    if (not_ready) stop = 1;
+    if (not_ready) { stop = 1; snprintf(stop_cause, sizeof stop_cause, "%d module(s) not ready", not_ready); }
     /* required real time: a module refused SCHED_FIFO at its priority ended (it said why): the
      * architecture would run without it */
     for (int k = 0; k < n_children && !stop && require_realtime; k++)
@@ -913,15 +940,22 @@ int main(int argc, char *argv[])
             say("module %s ended before the start, and real-time is required: the architecture does not run without it; the run stops without its start request",
                 children[k].name);
             stop = 1;
+            snprintf(stop_cause, sizeof stop_cause, "module %s ended before the start, and real-time is required", children[k].name);
         }
     if (!stop) say("%d module(s) running", alive_count());
     int start_failed = !stop && start && *start && send_start(start) != 0;
     if (!stop) {
         RTIME deadline = duration >= 0 ? now_ns() + (RTIME)(duration * 1e9) : INT64_MAX;
-        deadline = end_by_deadline(deadline, launched, duration);
-        run_loop(sfd, deadline, all_ended);
+        RTIME end = end_by_deadline(deadline, launched, duration);
+        if (!run_loop(sfd, end, all_ended)) {
+            if (alive_count() == 0) snprintf(stop_cause, sizeof stop_cause, "every module has ended");
+            else if (end < deadline) snprintf(stop_cause, sizeof stop_cause, "the run time limit (CONTRACT_END_BY_S=%g s after the launch)", end_by_s);
+            else snprintf(stop_cause, sizeof stop_cause, "the run's duration (%g s) is over", duration);
+        }
     }
+    /* the build service's reason when it gave one, else what stopped the run (a signal: who sent it) */
     if (stop_why) say("stopping: %s", stop_why);
+    else if (stop_cause[0]) say("stopping: %s", stop_cause);
     else say("stopping");
     stop_all(sfd);
     ContractShutdown();

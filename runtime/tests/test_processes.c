@@ -122,6 +122,8 @@ void test_launcher_crash_cleanup(void)
     CHECK(text && strstr(text, "module C2 (pid") && strstr(text, "died by signal 6"));
     CHECK(text && strstr(text, "FAILED: module C2 crashed"));
     CHECK(text && strstr(text, "module P (pid") && strstr(text, "exited with status 0"));
+    /* the stop line says what stopped the run: make kill (contract-launch --kill) */
+    CHECK_MSG(text && strstr(text, "contract-launch: stopping: make kill (contract-launch --kill, pid "), "launcher output: %s", text ? text : "(none)");
     free(text);
     CHECK(!process_exists(pp) && !process_exists(pc1));
     CHECK(h_count_entries(h_run_dir) == -1); /* run directory removed: nothing left in it */
@@ -277,6 +279,7 @@ void test_launcher_start_duration(void)
     char *text = h_read_file(out);
     CHECK(text && strstr(text, "[P] P ready\n"));
     CHECK(text && strstr(text, "started P.mission(consigne={1.0,2.0,3.0})"));
+    CHECK(text && strstr(text, "contract-launch: stopping: the run's duration (1 s) is over\n"));
     CHECK(text && strstr(text, "all modules stopped cleanly"));
     free(text);
     char *logs = h_read_logs("P_");
@@ -493,6 +496,26 @@ void test_launcher_sigint(void)
     CHECK(!h_unix_socket_listed(h_run_dir));
     char *text = h_read_file(out);
     CHECK(text && strstr(text, "all modules stopped cleanly"));
+    char from_me[80];
+    snprintf(from_me, sizeof from_me, "contract-launch: stopping: SIGINT from pid %ld\n", (long)getpid());
+    CHECK_MSG(text && strstr(text, from_me), "launcher output: %s", text ? text : "(none)");
+    free(text);
+    h_teardown();
+
+    /* a Ctrl-C in the terminal comes from pid 0 (the terminal's driver): said so, not "from pid 0"
+     * (a SIGINT with si_pid 0 queued here stands for it) */
+    launcher = launch_modules("sigint0", P_AND_C1, out, sizeof out);
+    REQUIRE(launcher > 0);
+    siginfo_t si;
+    memset(&si, 0, sizeof si);
+    si.si_signo = SIGINT;
+    si.si_code = SI_QUEUE;
+    si.si_pid = 0;
+    CHECK(syscall(SYS_rt_sigqueueinfo, launcher, SIGINT, &si) == 0);
+    CHECK(h_wait_exit(launcher, 6000) == 0);
+    text = h_read_file(out);
+    CHECK_MSG(text && strstr(text, "contract-launch: stopping: SIGINT from the terminal\n") && !strstr(text, "pid 0"),
+              "launcher output: %s", text ? text : "(none)");
     free(text);
     h_teardown();
 }
@@ -535,7 +558,9 @@ void test_launcher_stop_why(void)
     launcher = launch_modules("stopwhy2", P_ONLY, out, sizeof out);
     REQUIRE(launcher > 0);
     CHECK(sigqueue(launcher, SIGTERM, (union sigval){ .sival_int = 99 }) == 0);
-    stopped_saying(launcher, out, "contract-launch: stopping\n", ",request_received,contract-launch,,0,KILL\n");
+    char from_me[80];
+    snprintf(from_me, sizeof from_me, "contract-launch: stopping: SIGTERM from pid %ld\n", (long)getpid());
+    stopped_saying(launcher, out, from_me, ",request_received,contract-launch,,0,KILL\n");
     h_teardown();
 
     /* `contract-launch --term-why CODE PID` (the build service's way in a container without a `kill`
