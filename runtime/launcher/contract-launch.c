@@ -118,7 +118,7 @@ static void usage(void)
             "                       [--duration SECONDS] [--ready-timeout SECONDS] [--stop-first 'NAME ...']\n"
             "                       [--cpus LIST] [--pm-qos-us N] [--require-realtime] EXECUTABLE...\n"
             "       contract-launch --check-realtime [--require-realtime]\n"
-            "       contract-launch --kill RUN_DIR\n"
+            "       contract-launch [--stop-first 'NAME ...'] --kill RUN_DIR\n"
             "       contract-launch --term-why CODE PID\n");
 }
 
@@ -246,6 +246,8 @@ static int term_why_mode(const char *code_text, const char *pid_text)
     return 0;
 }
 
+static int stops_first(const char *name);
+
 static int kill_mode(const char *dir)
 {
     struct stat st;
@@ -263,28 +265,34 @@ static int kill_mode(const char *dir)
         say("stopped the architecture of %s", dir);
         return 0;
     }
-    /* No launcher: modules started by hand. Ask each one to end, then terminate stragglers. */
+    /* No launcher (it died, or the modules were started by hand): ask each one to end, those
+     * --stop-first names (the supervisors: make kill gives them) first, as the launcher's stop does,
+     * so that their undo still reaches ORD and the modules; then terminate stragglers. */
     setenv("CONTRACT_RUN_DIR", dir, 1);
     mark_stopping();
     DIR *d = opendir(dir);
+    static char names[MAX_MODULES][CONTRACT_NAME_MAX];
     long pids[MAX_MODULES];
     int n = 0;
     struct dirent *e;
     while (d && (e = readdir(d)) != NULL && n < MAX_MODULES) {
         size_t l = strlen(e->d_name);
         if (l <= 4 || strcmp(e->d_name + l - 4, ".pid") != 0 || strcmp(e->d_name, "launcher.pid") == 0) continue;
-        char name[CONTRACT_NAME_MAX];
-        snprintf(name, sizeof name, "%.*s", (int)(l - 4), e->d_name);
+        snprintf(names[n], sizeof names[n], "%.*s", (int)(l - 4), e->d_name);
         snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
         pids[n++] = read_pid_file(path);
-        if (ModuleState(name) == CONTRACT_OK) SendKill(name, ACK_NOTHING, -1);
     }
     if (d) closedir(d);
-    for (int t = 0; t < 40; t++) {
-        int alive = 0;
-        for (int i = 0; i < n; i++) if (pids[i] > 0 && process_running(pids[i])) alive++;
-        if (!alive) break;
-        usleep(50000);
+    for (int first = 1; first >= 0; first--) {
+        int sent = 0;
+        for (int i = 0; i < n; i++)
+            if (stops_first(names[i]) == first && ModuleState(names[i]) == CONTRACT_OK) { SendKill(names[i], ACK_NOTHING, -1); sent++; }
+        for (int t = 0; sent && t < 40; t++) { /* 2 s at most, as the launcher's stop */
+            int alive = 0;
+            for (int i = 0; i < n; i++) if (stops_first(names[i]) == first && pids[i] > 0 && process_running(pids[i])) alive++;
+            if (!alive) break;
+            usleep(50000);
+        }
     }
     for (int i = 0; i < n; i++) if (pids[i] > 0 && process_running(pids[i])) kill((pid_t)pids[i], SIGKILL);
     clean_run_dir(dir);

@@ -647,6 +647,15 @@ void test_launcher_end_by(void)
     h_teardown();
 }
 
+/* The mono_ns (first column) of the first CSV line of `logs` that holds `needle`; -1 when none does. */
+static long long mono_of(const char *logs, const char *needle)
+{
+    const char *hit = logs ? strstr(logs, needle) : NULL;
+    if (!hit) return -1;
+    while (hit > logs && hit[-1] != '\n') hit--;
+    return strtoll(hit, NULL, 10);
+}
+
 void test_kill_without_launcher(void)
 {
     REQUIRE(h_setup("killnl") == 0);
@@ -664,6 +673,24 @@ void test_kill_without_launcher(void)
     free(text);
     char *missing[] = { "contract-launch", "--kill", "/nonexistent/run", NULL };
     CHECK(h_run(missing, out, 3000) == 2);
+    h_teardown();
+
+    /* with --stop-first (make kill gives the supervisors), those end before the others are asked:
+     * MSC (standing for a supervisor here) has ended when P receives its KILL */
+    REQUIRE(h_setup("killfirst") == 0);
+    p = h_spawn_module("P", "P");
+    c = h_spawn_module("MSC", "MSC");
+    REQUIRE(p > 0 && c > 0);
+    ContractShutdown();
+    char *first[] = { "contract-launch", "--stop-first", "MSC", "--kill", h_run_dir, NULL };
+    snprintf(out, sizeof out, "%s/kill.out", h_work_dir);
+    CHECK(h_run(first, out, 10000) == 0);
+    CHECK(h_wait_exit(p, 2000) == 0 && h_wait_exit(c, 2000) == 0);
+    char *msc_log = h_read_logs("MSC_"), *p_log = h_read_logs("P_");
+    long long msc_end = mono_of(msc_log, ",MSC,module_exit,"), p_kill = mono_of(p_log, ",KILL");
+    CHECK_MSG(msc_end > 0 && p_kill > 0 && msc_end <= p_kill, "MSC ended at %lld, P got its KILL at %lld\nP's log: %s", msc_end, p_kill, p_log ? p_log : "(none)");
+    free(msc_log);
+    free(p_log);
     h_teardown();
 }
 

@@ -155,4 +155,13 @@ describe('make run: the supervisors stop first', () => {
         expect(r.stdout).toContain(' --stop-first SUP GLB ');
         expect(r.stdout.trim().endsWith(['ORD', 'MAA', 'MAB', 'MSA', 'MSB', 'MSC', 'MSD', 'SUP', 'GLB'].map((e) => `modules/${e}_mod/${e}`).join(' '))).toBe(true);
     });
+
+    it('gives them to contract-launch --kill too (make kill): a launcher that died leaves modules that stop in the same order', () => {
+        const arch = join(root, 'stop-first-kill');
+        mkdirSync(arch);
+        cpSync(MAKEFILE, join(arch, 'Makefile'));
+        const r = spawnSync('make', ['-s', 'kill', 'LAUNCH=echo', `RUN_DIR=${join(root, 'a-run')}`, `CONTRACT_RUNTIME=${join(REPO, 'runtime')}`], { cwd: arch, encoding: 'utf8' });
+        expect(r.status, r.stderr).toBe(0);
+        expect(r.stdout.trim()).toBe(`--stop-first SUP GLB --kill ${join(root, 'a-run')}`);
+    });
 });

@@ -76,7 +76,7 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         	$(LAUNCH) --run-dir '$(RUN_DIR)' --log-dir '$(LOG_DIR)' --start '$(START)' $(if $(SUPERVISORS),--stop-first '$(SUPERVISORS)') $(if $(DURATION),--duration '$(DURATION)') $(if $(CPUS),--cpus '$(CPUS)') $(if $(PM_QOS_US),--pm-qos-us '$(PM_QOS_US)') $(if $(READY_TIMEOUT),--ready-timeout '$(READY_TIMEOUT)') $(if $(filter 1,$(REQUIRE_REALTIME)),--require-realtime) $(foreach e,$(EXECUTABLES),modules/$(e)_mod/$(e))
 
         kill:
-        	$(LAUNCH) --kill '$(RUN_DIR)'
+        	$(LAUNCH) $(if $(SUPERVISORS),--stop-first '$(SUPERVISORS)') --kill '$(RUN_DIR)'
 
         clean:
         	${joinToNode(executables, (e) => `$(MAKE) -C modules/${e}_mod -f Makefile clean`, { separator: '\n\t' })}
