@@ -58,7 +58,7 @@ async function build(s: JobService, onJob?: (job: Job) => void): Promise<{ job: 
 }
 
 /** The executables gcc was asked to produce in this build (`cc ... -o NAME`). */
-const compiled = (lines: string[]): string[] => lines.filter((l) => /^cc /.test(l)).map((l) => /-o (\S+)/.exec(l)?.[1] ?? '?').sort();
+const compiled = (lines: string[]): string[] => lines.filter((l) => /^g?cc /.test(l)).map((l) => /-o (\S+)/.exec(l)?.[1] ?? '?').sort();
 
 function workTreeTimes(workDir: string, files: string[]): Map<string, number> {
   return new Map(files.map((f) => [f, statSync(join(workDir, f)).mtimeMs]));

@@ -29,7 +29,7 @@ function expectTutorialRan(job: Record<string, any>, lines: LineEvent[]): void {
   expect(run.some((l) => l.source === 'MAA' && l.line === 'initialization of MAA')).toBe(true);
   expect(run.some((l) => l.source === 'GLB' && /function mission\(consigne = \{i=0\.0,j=0\.0,k=0\.0\}\) started/.test(l.line))).toBe(true);
   expect(run.some((l) => l.source === 'MSC')).toBe(true);
-  expect(lines.filter((l) => l.step === 'build' && /^cc .* -o MAA /.test(l.line))).toHaveLength(1);
+  expect(lines.filter((l) => l.step === 'build' && /^g?cc .* -o MAA /.test(l.line))).toHaveLength(1);
 }
 
 interface ArtifactListing {
@@ -73,7 +73,7 @@ describe.each(['bwrap', ...(docker.available ? ['docker'] : [])])('the tutorial 
     const again = await runJob({ action: 'build', sandbox, project: { dir: TUTORIAL_DIR } });
     expect(again.job.status).toBe('succeeded');
     expect(again.lines.some((l) => l.line === 'project unchanged since the last build: generation skipped')).toBe(true);
-    expect(again.lines.filter((l) => l.step === 'build' && /^cc /.test(l.line))).toEqual([]);
+    expect(again.lines.filter((l) => l.step === 'build' && /^g?cc /.test(l.line))).toEqual([]);
   });
 
   test('the CSV logs come out through the API; a link planted in logs/ is not followed', async () => {

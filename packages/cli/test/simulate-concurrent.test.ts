@@ -40,7 +40,8 @@ describe('contract simulate, twice at once on a cold cache', () => {
     it('both succeed with identical records; one simulator in the cache, no half-built folder left', async () => {
         // a runtime folder of its own, without build/: both processes find the harness objects missing
         const runtime = join(scratch, 'runtime');
-        cpSync(join(REPO, 'runtime'), runtime, { recursive: true, filter: (src) => !src.startsWith(join(REPO, 'runtime', 'build')) });
+        const built = join(REPO, 'runtime', 'build'); // the folder, not build-config.mk beside it
+        cpSync(join(REPO, 'runtime'), runtime, { recursive: true, filter: (src) => src !== built && !src.startsWith(`${built}/`) });
         const cache = join(scratch, 'cache');
         const [a, b] = await Promise.all([simulate(runtime, cache), simulate(runtime, cache)]);
         expect(a.code, a.stderr).toBe(0);

@@ -97,12 +97,12 @@ describe('contract build killed with -9', () => {
         const compiling = new Promise<void>((resolve) => {
             child.stderr.on('data', (d: Buffer) => {
                 stderr += d.toString();
-                if (/^cc .* -o MAA /m.test(stderr)) resolve();
+                if (/^g?cc .* -o MAA /m.test(stderr)) resolve();
             });
         });
         const exited = new Promise<void>((resolve) => child.on('exit', () => resolve()));
         await Promise.race([compiling, exited]);
-        expect(stderr).toMatch(/^cc .* -o MAA /m);
+        expect(stderr).toMatch(/^g?cc .* -o MAA /m);
         child.kill('SIGKILL');
         await exited;
         const t0 = Date.now();
@@ -110,7 +110,7 @@ describe('contract build killed with -9', () => {
         expect(again.code, again.stderr).toBe(0);
         expect(again.stderr).not.toContain('waiting for the other command');
         expect(again.stderr).toContain('no build ended in this workspace since it was emptied: building from scratch');
-        expect(again.stderr).toMatch(/^cc .* -o ORD /m);
+        expect(again.stderr).toMatch(/^g?cc .* -o ORD /m);
         expect(Date.now() - t0).toBeLessThan(120_000);
     }, 240_000);
 });
