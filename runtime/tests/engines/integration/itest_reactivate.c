@@ -122,7 +122,7 @@ void scenario_reactivation(const char *root, const char *bin, const char *launch
           "at the end of the run RSU undoes its last activation of RSC (a supervisor record)");
     check(t_act2 > 0 && csv_time_of(ord, after_act2, ",deactivate RSC", NULL) > 0,
           "ORD deactivates RSC at the end of the run (RSU stopped before ORD: --stop-first)");
-    const char *rsu_end = txt ? strstr(txt, "module RSU (pid ") : NULL, *ord_end = txt ? strstr(txt, "module ORD (pid ") : NULL;
+    const char *rsu_end = txt ? strstr(txt, "contract-launch: module RSU (pid ") : NULL, *ord_end = txt ? strstr(txt, "contract-launch: module ORD (pid ") : NULL;
     check(rsu_end && ord_end && rsu_end < ord_end && strstr(txt, "all modules stopped cleanly"),
           "the launcher saw RSU end before ORD, and every module stop cleanly");
     free(rsu);

@@ -91,7 +91,9 @@ void scenario_service_stop(const char *root, const char *bin, const char *launch
     check(txt && count_of(txt, "while the run stops: the stop goes on in order") <= 1, "service stop: a repeated SIGTERM is said once at most");
     check(txt && strstr(txt, "[ORD] ORD: SIGTERM from pid ") && strstr(txt, "passed to contract-launch (pid "),
           "service stop: ORD passed its SIGTERM on to the launcher instead of ending");
-    const char *rsu_end = txt ? strstr(txt, "module RSU (pid ") : NULL, *ord_end = txt ? strstr(txt, "module ORD (pid ") : NULL;
+    /* the launcher's end lines (not "SIGTERM from module ORD (pid N) while the run stops", which
+     * names ORD when its passed-on signal is the repeated one the launcher tells) */
+    const char *rsu_end = txt ? strstr(txt, "contract-launch: module RSU (pid ") : NULL, *ord_end = txt ? strstr(txt, "contract-launch: module ORD (pid ") : NULL;
     check(rsu_end && ord_end && rsu_end < ord_end, "service stop: RSU ended before ORD (supervisors first)");
 
     /* RSU's last undo of RSC reached ORD: ORD logged that very deactivation */
