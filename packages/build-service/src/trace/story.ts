@@ -12,6 +12,7 @@ import { confirmingHold, type ConfirmingHold } from './action-holds.js';
 import { missedTicksOf, skippedReleasesOf } from './ord-counts.js';
 import { durationText } from './duration-text.js';
 import { ReleaseLateness } from './release-lateness.js';
+import { UndosToOrd } from './undos-to-ord.js';
 import { countRecord, isRule, type KnownRecord, type RecordCounts, type RuleCause, type TraceRecord, type TraceRecordBase } from './records.js';
 
 /** How the runtime ends the detail of an `error` record written while contract-launch stops the run. */
@@ -353,19 +354,8 @@ export class StoryTeller {
     private unheard = 0;
     /** Data flows (at most STORY_FOLLOWED) whose first dropped value was told: later drops are only counted. */
     private readonly droppingFlows = new Set<string>();
-    /**
-     * The supervisors' undos of periodic schemas sent to ORD and not served yet (at most
-     * STORY_FOLLOWED): `SUP\0schema\0activation` -> the undo's words. ORD serves one with its
-     * `deactivate S (activation #N from SUP)` or `ignored: deactivate S`; one the supervisor could
-     * not send is followed by its `error` record (told as such). Those left when ORD's exit record
-     * is read had reached ORD's mailbox after ORD's last read of it (ORD was stopped or crashed
-     * first): told with ORD's end (unservedUndoText).
-     */
-    private readonly unservedUndos = new Map<string, string>();
-    /** The key of each supervisor's last undo to ORD (a failed send's record follows it). */
-    private readonly lastUndoOf = new Map<string, string>();
-    /** A launcher's KILL was read: the run is stopping. */
-    private runStopping = false;
+    /** The supervisors' undos to ORD, followed until ORD serves them: those its end left unserved are told (undos-to-ord.ts). */
+    private readonly undos = new UndosToOrd();
     /** Why the run stopped was told (the first module's KILL that says it: the others say the same). */
     private stopWhyTold = false;
     /** Per periodic schema (at most STORY_FOLLOWED): its figures, told before the counts (schemaLines). */
@@ -404,7 +394,7 @@ export class StoryTeller {
         const k = r as KnownRecord;
         const what = String(k.fields['what'] ?? '');
         if (k.kind === 'supervisor') this.followAction(k, what);
-        this.followUndoToOrd(k, what);
+        this.undos.see(k);
         if (k.kind === 'supervisor' && SUPERVISOR_TOLD.has(what)) return `${at(k)} ${k.detail}`;
         // every action and undo, with its target and value: who activated a schema or a function, what it sent,
         // the modules it started and stopped, the flows it connected, the priorities it claimed
@@ -519,53 +509,29 @@ export class StoryTeller {
         return dropText(flow, k.peer, String(toPort ?? '?'), k.detail);
     }
 
-    /** A supervisor's record: the hold record its action line expects, if any, replaces the one it expected. */
-    /**
-     * Follows the supervisors' undos to ORD until ORD serves them (unservedUndos), and whether the
-     * run is stopping (a launcher's KILL read).
-     */
-    private followUndoToOrd(k: KnownRecord, what: string): void {
-        if (k.kind === 'request_received' && k.peer === 'contract-launch' && k.detail.startsWith('KILL')) this.runStopping = true;
-        if (k.kind === 'supervisor' && what === 'action' && k.peer === 'ORD' && k.detail.startsWith('undo: deactivate schema ') && k.fields['activation'] !== undefined) {
-            const key = `${k.module}\0${String(k.fields['schema'])}\0${String(k.fields['activation'])}`;
-            if (!this.unservedUndos.has(key) && this.unservedUndos.size >= STORY_FOLLOWED) return;
-            this.unservedUndos.set(ownString(key), ownString(`${k.module}'s ${k.detail.replace(/, to ORD\)$/, ')')}`));
-            this.lastUndoOf.set(ownString(k.module), ownString(key));
-            return;
-        }
-        // the undo was not sent (ORD had ended, the send failed): its own record tells it
-        const last = this.lastUndoOf.get(k.module);
-        if (last && ((k.kind === 'error' && k.detail.startsWith('STOP request to ORD:')) || (k.kind === 'supervisor' && what === 'error' && k.peer === 'ORD'))) {
-            this.unservedUndos.delete(last);
-            this.lastUndoOf.delete(k.module);
-            return;
-        }
-        if (k.kind === 'supervisor' && k.module !== 'ORD') this.lastUndoOf.delete(k.module); // its next record: the undo was sent
-        if (k.kind !== 'scheduler' || k.module !== 'ORD') return;
-        if (what === 'deactivate') this.unservedUndos.delete(`${String(k.fields['requester'])}\0${String(k.fields['schema'])}\0${String(k.fields['activation'])}`);
-        if (what === 'ignored' && k.fields['schema'] !== undefined) {
-            const schema = `\0${String(k.fields['schema'])}\0`;
-            const served = [...this.unservedUndos.keys()].find((key) => key.includes(schema));
-            if (served) this.unservedUndos.delete(served);
-        }
-    }
-
     /**
      * What ORD's end left unserved, told with its exit or crash record: `; while the run stopped: ORD
      * ended before it served SUP's undo: deactivate schema S (activation #N): S stayed active to its
-     * end` (without `while the run stopped: ` when no launcher's KILL was read); empty for another
-     * module or none left.
+     * end (...)` (UndosToOrd.atOrdEnd); empty for another module or none left.
      */
     private unservedUndoText(module: string): string {
-        if (module !== 'ORD' || !this.unservedUndos.size) return '';
-        const undos = [...this.unservedUndos.values()];
-        const schemas = [...new Set([...this.unservedUndos.keys()].map((key) => key.split('\0')[1]))];
-        this.unservedUndos.clear();
-        this.lastUndoOf.clear();
-        return `; ${this.runStopping ? 'while the run stopped: ' : ''}ORD ended before it served ${undos.join(', ')}: ` +
-            `${schemas.join(', ')} stayed active to its end (the undo reached ORD's mailbox after ORD's last read of it)`;
+        const left = module === 'ORD' ? this.undos.atOrdEnd() : undefined;
+        return left ? `; ${left.text}` : '';
     }
 
+    /**
+     * The lines told once the records end (after the last tell): the undos to ORD its log never
+     * answered when ORD wrote no exit record (killed, or terminated at the stop) and the run is seen
+     * to have ended (UndosToOrd.atRecordsEnd), at the last of them: `+5.009420s ORD  ORD's log ends
+     * with no exit record (...) and no answer to SUP's undo: ...`. None while an undo may be in flight.
+     */
+    endLines(): string[] {
+        const left = this.undos.atRecordsEnd();
+        if (!left) return [];
+        return [`${offset(BigInt(left.monoNs) - (this.t0 ?? 0n))} ${'ORD'.padEnd(4)} ${left.text}`];
+    }
+
+    /** A supervisor's record: the hold record its action line expects, if any, replaces the one it expected. */
     private followAction(k: KnownRecord, what: string): void {
         const hold = what === 'action' ? confirmingHold(k.fields) : undefined;
         if (!hold) {
@@ -764,6 +730,6 @@ export function renderStory(records: TraceRecord[]): string[] {
         const line = teller.tell(r);
         if (line !== undefined) lines.push(line);
     }
-    lines.push(...teller.schemaLines(), teller.summary());
+    lines.push(...teller.endLines(), ...teller.schemaLines(), teller.summary());
     return lines;
 }

@@ -765,6 +765,40 @@ describe("a supervisor's undo that reached ORD's mailbox after ORD's last read o
             ['6000000300,w,ORD,module_exit,,,0,status=3 records=3']);
         expect(crashed.find((l) => l.includes('ORD  exited'))).toMatch(/records=3\); ORD ended before it served BSE's undo: deactivate schema fastLoop \(activation #4\)/);
     });
+
+    // a real run (tutorial, sandbox none): ORD stopped (SIGSTOP) during schemaCommande1's activation, so the
+    // undo at the run's end reached its mailbox; the launcher then killed it (SIGTERM, SIGKILL): no exit record
+    const killedOrd = [
+        '6000000000,w,BSE,request_received,contract-launch,,0,KILL',
+        '6000000100,w,BSE,supervisor,ORD,,0,"undo: deactivate schema fastLoop (activation #4, to ORD)"',
+        '6000000200,w,BSE,supervisor,,,0,function drive stopped',
+    ];
+    const ordKilled = ['3000000000,w,ORD,ord_complete,,,0,schema=fastLoop cycle=1 tick_ns=3000000000 response_ns=411719'];
+
+    it('tells at the records\' end an undo ORD\'s log never answered when ORD wrote no exit record (killed), once the run is seen ended', () => {
+        const lines = story([...killedOrd, '6000000300,w,BSE,module_exit,,,0,status=0 records=5'], ordKilled);
+        const told = lines.filter((l) => l.includes('no answer to'));
+        expect(told).toEqual(['+5.000000s ORD  while the run stopped: ORD\'s log ends with no exit record (it was killed or terminated: `contract run` says which) ' +
+            'and no answer to BSE\'s undo: deactivate schema fastLoop (activation #4): whether ORD served it before its end is unknown (a module killed loses ' +
+            'the records it had not written, unless contract-launch wrote them from its log buffers), fastLoop may have stayed active to its end']);
+        // told after the records, before the schema figures
+        expect(lines.indexOf(told[0]!)).toBe(lines.findIndex((l) => l.startsWith('schema fastLoop')) - 1);
+    });
+
+    it('does not say an undo unserved while the run may still go on (no module ended after it: it may be in flight)', () => {
+        const inFlight = story(killedOrd, ordKilled);
+        expect(inFlight.filter((l) => l.includes('no answer to') || l.includes('before it served'))).toEqual([]);
+        // nor when ORD served it, ORD's log ending without its exit record all the same
+        const served = story([...killedOrd, '6000000300,w,BSE,module_exit,,,0,status=0 records=5'],
+            [...ordKilled, '6000000150,w,ORD,scheduler,,,0,deactivate fastLoop (activation #4 from BSE)']);
+        expect(served.filter((l) => l.includes('no answer to'))).toEqual([]);
+        // a StoryTeller fed record by record (a live trace): its lines say nothing of it before endLines
+        const teller = new StoryTeller();
+        const said = parseTrace([{ name: 'BSE_1.csv', text: bse([...killedOrd, '6000000300,w,BSE,module_exit,,,0,status=0 records=5']) }, { name: 'ORD_1.csv', text: ord(ordKilled) }])
+            .map((r) => teller.tell(r)).filter((l): l is string => l !== undefined);
+        expect(said.filter((l) => l.includes('no answer to'))).toEqual([]);
+        expect(teller.endLines()).toHaveLength(1);
+    });
 });
 
 describe("a supervisor's requests kept for a full mailbox", () => {
