@@ -205,6 +205,8 @@ export class LiveFollower {
     if (this.ended) return;
     this.ended = true;
     this.outcome = outcome ?? 'the trace stream could not be opened';
+    // the job's end (not a stream lost): its undos to ORD that ORD's log never answered are marked now, never before
+    if (outcome !== undefined && outcome !== CONNECTION_LOST) this.model.recordsEnded();
     if (problem) this.problems.push(problem);
     this.stream?.close();
     clearTimeout(this.postTimer);

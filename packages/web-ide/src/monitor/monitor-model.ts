@@ -21,7 +21,7 @@
  * Memory per record is therefore bounded by keepRecords, not by the run's length (a 1 kHz schema
  * for 60 s is about 1.5 million records).
  */
-import { LogClocks, parseRecordLine, isRule, askedToStopText, ignoredUndo, keptRequestsText, missCriticalDelayNs, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { LogClocks, UndosToOrd, type UnservedUndos, parseRecordLine, isRule, askedToStopText, ignoredUndo, keptRequestsText, missCriticalDelayNs, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { FOLDED_KINDS, applyRecord, applyUnfolded } from './apply-record.js';
 import { nameIn, scanLine, scanned } from './line-scan.js';
 import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
@@ -297,6 +297,10 @@ export class MonitorModel implements MonitorView {
   private readonly gone = new Set<string>();
   /** The run's stop was marked (askedToStopText: the first module's KILL saying why). */
   private stopMarked = false;
+  /** The supervisors' undos to ORD until ORD serves them: those its end left unserved are marked on their schema's row, as `contract trace` tells them. */
+  private readonly undos = new UndosToOrd();
+  /** The run's end was marked (recordsEnded: once). */
+  private endMarked = false;
   /** The schema a release or completion line named last, and its waits (a line naming it again is matched in place). */
   private lastWaits: CycleWaits | undefined;
   private lastWaitsName = '';
@@ -472,7 +476,35 @@ export class MonitorModel implements MonitorView {
       this.stopMarked = true;
       this.cappedMark(t, 'error', r as KnownRecord, askedToStopText);
     }
+    if (r.kind !== 'unknown' && !isRule(r)) this.followUndoToOrd(t, r as KnownRecord);
     applyRecord(this.live, r, t, this.t0 ?? 0);
+  }
+
+  /** A record's share of the undos to ORD: ORD's exit or crash record marks those it never served (UndosToOrd.atOrdEnd). */
+  private followUndoToOrd(t: Ns, k: KnownRecord): void {
+    this.undos.see(k);
+    if ((k.kind === 'module_exit' || k.kind === 'module_crashed') && k.module === 'ORD') this.markUnserved(t, this.undos.atOrdEnd());
+  }
+
+  /** One mark per schema the undos left active, on its row, with the sentence `contract trace` tells. */
+  private markUnserved(t: Ns, left: UnservedUndos | undefined): void {
+    for (const schema of left?.schemas ?? []) {
+      if (this.marks.length >= this.maxMarks) return;
+      this.marks.push({ t, kind: 'schema', where: schema, label: left!.text.slice(0, 600) });
+      this.version++;
+    }
+  }
+
+  /**
+   * The records are over (a recorded run read whole, a live run's job ended): the undos ORD's log
+   * never answered when it wrote no exit record (killed, terminated at the stop) are marked at the
+   * last record, as `contract trace` tells them after its last (UndosToOrd.atRecordsEnd: none while
+   * the run may still go on). Once.
+   */
+  recordsEnded(): void {
+    if (this.endMarked) return;
+    this.endMarked = true;
+    this.markUnserved(this.live.t, this.undos.atRecordsEnd());
   }
 
   /** The `ord_release` line applyHotLine just folded (hotRelease: its schema and cycle): its module (its peer) waited for in that cycle. */

@@ -252,6 +252,7 @@ export function* recordedRunSteps(files: readonly LogFile[], every = 2000, optio
         if (++folded % every === 0) yield;
       }
     }
+    model.recordsEnded();
     return { model, leftOut };
   }
   // merge: a heap of the logs by their next line (key, then file order)
@@ -272,6 +273,7 @@ export function* recordedRunSteps(files: readonly LogFile[], every = 2000, optio
     else heap.topChanged();
     if (++folded % every === 0) yield;
   }
+  model.recordsEnded();
   return { model, leftOut };
 }
 
