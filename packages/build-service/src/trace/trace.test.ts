@@ -775,7 +775,7 @@ describe("a supervisor's undo that reached ORD's mailbox after ORD's last read o
     ];
     const ordKilled = ['3000000000,w,ORD,ord_complete,,,0,schema=fastLoop cycle=1 tick_ns=3000000000 response_ns=411719'];
 
-    it('tells at the records\' end an undo ORD\'s log never answered when ORD wrote no exit record (killed), once the run is seen ended', () => {
+    it('tells at the records\' end an undo ORD\'s log never answered when ORD wrote no exit record (killed), once its supervisor\'s exit shows the run ended', () => {
         const lines = story([...killedOrd, '6000000300,w,BSE,module_exit,,,0,status=0 records=5'], ordKilled);
         const told = lines.filter((l) => l.includes('no answer to'));
         expect(told).toEqual(['+5.000000s ORD  while the run stopped: ORD\'s log ends with no exit record (it was killed or terminated: `contract run` says which) ' +
@@ -785,9 +785,13 @@ describe("a supervisor's undo that reached ORD's mailbox after ORD's last read o
         expect(lines.indexOf(told[0]!)).toBe(lines.findIndex((l) => l.startsWith('schema fastLoop')) - 1);
     });
 
-    it('does not say an undo unserved while the run may still go on (no module ended after it: it may be in flight)', () => {
+    it('does not say an undo unserved while the run may still go on (its supervisor not ended after it: it may be in flight)', () => {
         const inFlight = story(killedOrd, ordKilled);
         expect(inFlight.filter((l) => l.includes('no answer to') || l.includes('before it served'))).toEqual([]);
+        // another module's end after it (a crash while the run goes on) is not the sender's: the run may go on
+        const otherEnded = renderStory(parseTrace([{ name: 'BSE_1.csv', text: bse(killedOrd) }, { name: 'ORD_1.csv', text: ord(ordKilled) },
+            { name: 'MSC_1.csv', text: [CSV_HEADER, '6000000300,w,MSC,module_crashed,,,0,signal 11 (SIGSEGV) records=9', ''].join('\n') }]));
+        expect(otherEnded.filter((l) => l.includes('no answer to'))).toEqual([]);
         // nor when ORD served it, ORD's log ending without its exit record all the same
         const served = story([...killedOrd, '6000000300,w,BSE,module_exit,,,0,status=0 records=5'],
             [...ordKilled, '6000000150,w,ORD,scheduler,,,0,deactivate fastLoop (activation #4 from BSE)']);

@@ -8,9 +8,10 @@
  * here). An undo still unserved when ORD's exit or crash record is read reached ORD's mailbox after
  * ORD's last read of it (ORD was stopped or crashed first): told with that record (atOrdEnd). One
  * still unserved when the records end, ORD's log having no exit record (ORD killed by SIGKILL or
- * terminated at the stop: it writes none), is told only once the run is seen to have ended — a
- * module's exit or crash record read after the undo — never while an undo may just be in flight
- * (atRecordsEnd).
+ * terminated at the stop: it writes none), is told only once the run is seen to have ended for it —
+ * the exit or crash record of the supervisor that sent it read after it (at a run's end the
+ * launcher stops the supervisors first: their undos are their last acts) — never while an undo may
+ * just be in flight (atRecordsEnd).
  */
 import { ownString } from './parse.js';
 import type { KnownRecord } from './records.js';
@@ -31,6 +32,9 @@ interface Undo {
     words: string;
     schema: string;
     monoNs: string;
+    /** The supervisor that sent it: its exit or crash record was read after it (the run stopped, the undo was its last act). */
+    senderEnded?: boolean;
+    sender: string;
 }
 
 export class UndosToOrd {
@@ -40,8 +44,6 @@ export class UndosToOrd {
     private readonly lastUndoOf = new Map<string, string>();
     /** A launcher's KILL was read: the run is stopping. */
     private runStopping = false;
-    /** A module's exit or crash record was read after the last unserved undo: the run has ended for it. */
-    private endSeenAfterUndo = false;
     /** ORD's exit or crash record was read (its end told what it left). */
     private ordEnded = false;
 
@@ -51,16 +53,15 @@ export class UndosToOrd {
         if (k.kind === 'request_received' && k.peer === 'contract-launch' && k.detail.startsWith('KILL')) this.runStopping = true;
         if (k.kind === 'module_exit' || k.kind === 'module_crashed') {
             if (k.module === 'ORD') this.ordEnded = true;
-            else this.endSeenAfterUndo = true;
+            else for (const u of this.unserved.values()) if (u.sender === k.module) u.senderEnded = true;
         }
         if (k.kind === 'module_started' && k.module === 'ORD') this.ordEnded = false;
         if (k.kind === 'supervisor' && what === 'action' && k.peer === 'ORD' && k.detail.startsWith('undo: deactivate schema ') && k.fields['activation'] !== undefined) {
             const schema = String(k.fields['schema']);
             const key = `${k.module}\0${schema}\0${String(k.fields['activation'])}`;
             if (!this.unserved.has(key) && this.unserved.size >= UNDOS_FOLLOWED) return;
-            this.unserved.set(ownString(key), { words: ownString(`${k.module}'s ${k.detail.replace(/, to ORD\)$/, ')')}`), schema: ownString(schema), monoNs: ownString(k.monoNs) });
+            this.unserved.set(ownString(key), { words: ownString(`${k.module}'s ${k.detail.replace(/, to ORD\)$/, ')')}`), schema: ownString(schema), monoNs: ownString(k.monoNs), sender: ownString(k.module) });
             this.lastUndoOf.set(ownString(k.module), ownString(key));
-            this.endSeenAfterUndo = false;
             return;
         }
         // the undo was not sent (ORD had ended, the send failed): its own record tells it
@@ -103,12 +104,12 @@ export class UndosToOrd {
      * the stop: neither writes one), `ORD's log ends with no exit record (it was killed or
      * terminated: ...) and no answer to SUP's undo: deactivate schema S (activation #N): whether ORD
      * served it before its end is unknown (...), S may have stayed active to its end`. Undefined
-     * when none is left, when ORD's exit was read, or when no module's end was read after the undo
-     * (the run may still be going: an undo in flight is no undo unserved).
+     * when none is left, when ORD's exit was read, or for an undo whose supervisor's end was not read
+     * after it (the run may still be going: an undo in flight is no undo unserved).
      */
     atRecordsEnd(): UnservedUndos | undefined {
-        if (this.ordEnded || !this.endSeenAfterUndo) return undefined;
-        const left = this.take();
+        if (this.ordEnded) return undefined;
+        const left = this.take((u) => u.senderEnded === true);
         if (!left) return undefined;
         return {
             schemas: left.schemas,
@@ -119,10 +120,10 @@ export class UndosToOrd {
         };
     }
 
-    /** The undos left (their words and schemas), forgotten. */
-    private take(): { words: string; schemas: string[]; monoNs: string } | undefined {
-        if (!this.unserved.size) return undefined;
-        const undos = [...this.unserved.values()];
+    /** The undos left (those `which` takes: all by default), their words and schemas, forgotten. */
+    private take(which: (u: Undo) => boolean = () => true): { words: string; schemas: string[]; monoNs: string } | undefined {
+        const undos = [...this.unserved.values()].filter(which);
+        if (!undos.length) return undefined;
         this.unserved.clear();
         this.lastUndoOf.clear();
         return { words: undos.map((u) => u.words).join(', '), schemas: [...new Set(undos.map((u) => u.schema))], monoNs: undos[undos.length - 1]!.monoNs };
