@@ -4,7 +4,8 @@ import { Emitter } from '../util/emitter.js';
 import { languageOf, isContract } from './file-kinds.js';
 import { replaceKeepingCursor } from '../editor/replace-keeping-cursor.js';
 import { replaceByDiff } from '../editor/replace-by-diff.js';
-import { withCopy, othersCopies, parseCopies, type BrowserCopy } from './browser-copies.js';
+import type { BrowserCopy } from './browser-copies.js';
+import { BrowserCopyStore } from './browser-copy-store.js';
 import { threeWayMerge } from './three-way-merge.js';
 
 /** `conflict`: the tab's edits and a change made elsewhere overlap; nothing is saved until the user chose. */
@@ -41,7 +42,6 @@ export interface FileState {
 }
 
 const SAVE_DELAY_MS = 300;
-const BACKUP_PREFIX = 'contract-studio:unsaved:';
 /** How long after this tab saved a file it takes up the copies of it that tabs closed since left. */
 const TAKE_UP_AFTER_MS = 2000;
 /** How long a tab asked whether it is open has to answer (a loaded machine: generous). */
@@ -518,8 +518,9 @@ export class Workspace {
     this.onFileState.fire(fs);
   }
 
-  private backupKey(path: string): string {
-    return `${BACKUP_PREFIX}${this.root}:${path}`;
+  /** The browser copies of this workspace's unsaved edits (browser-copy-store.ts: one entry per file and tab). */
+  private get copies(): BrowserCopyStore {
+    return new BrowserCopyStore(localStorage, this.root);
   }
 
   /** This page's copies among the browser's (browser-copies.ts): a reload is a new page, whose copy the old one's does not hide. */
@@ -528,9 +529,8 @@ export class Workspace {
   /** Keeps the tab's text and the base it was edited from (a reload can then still merge), beside other tabs' copies. */
   private backup(fs: FileState, text: string): void {
     const copy: BrowserCopy = { text, baseText: fs.diskText, ...(fs.diskVersion !== undefined ? { baseVersion: fs.diskVersion } : {}), ...(fs.sending !== undefined ? { sentText: fs.sending } : {}), at: Date.now() };
-    const key = this.backupKey(fs.path);
     try {
-      localStorage.setItem(key, withCopy(localStorage.getItem(key), this.tabId, copy)!);
+      this.copies.put(fs.path, this.tabId, copy);
     } catch {
       this.onNotice.fire({ level: 'warning', text: 'Browser storage full: unsaved text is only in memory until the server confirms' });
     }
@@ -539,7 +539,7 @@ export class Workspace {
   /** Drops this tab's copy of `path` (other tabs' stay); once saved, any copy another tab left is taken up after a while. */
   private clearBackup(path: string): void {
     this.dropCopy(path, this.tabId);
-    if (othersCopies(localStorage.getItem(this.backupKey(path)), this.tabId).length && !this.takeUpTimers.has(path)) {
+    if (this.copies.others(path, this.tabId).length && !this.takeUpTimers.has(path)) {
       this.takeUpTimers.set(path, setTimeout(() => {
         this.takeUpTimers.delete(path);
         void this.takeUpCopies(path);
@@ -549,12 +549,10 @@ export class Workspace {
 
   private readonly takeUpTimers = new Map<string, ReturnType<typeof setTimeout>>();
 
+  /** Drops tab `tab`'s copy of `path`: this tab's own, or that of a tab gone whose text this tab took up. */
   private dropCopy(path: string, tab: string): void {
-    const key = this.backupKey(path);
-    const next = withCopy(localStorage.getItem(key), tab, undefined);
     try {
-      if (next === null) localStorage.removeItem(key);
-      else localStorage.setItem(key, next);
+      this.copies.drop(path, tab);
     } catch {
       /* storage refused: the copy stays, taken up again later (merged, nothing doubled) */
     }
@@ -564,16 +562,13 @@ export class Workspace {
    * Re-applies text that was edited but not confirmed by the server before the last reload, or by
    * another tab of this browser that could not save it (closed, or reloaded, while the server was
    * away): every copy, each of its own tab. When the disk moved on since a copy's base, the copy is
-   * merged with it (or becomes a conflict) rather than written over it.
+   * merged with it (or becomes a conflict) rather than written over it. The copies an earlier
+   * version kept (one entry per file for every tab) are first moved to one entry per tab.
    */
   private restoreBackups(): void {
-    const prefix = `${BACKUP_PREFIX}${this.root}:`;
-    const paths: string[] = [];
-    for (let i = 0; i < localStorage.length; i++) {
-      const key = localStorage.key(i);
-      if (key?.startsWith(prefix)) paths.push(key.slice(prefix.length));
-    }
-    for (const path of paths) void this.takeUpCopies(path);
+    const copies = this.copies;
+    copies.migrateLegacy();
+    for (const path of copies.paths()) void this.takeUpCopies(path);
   }
 
   /** Files whose other tabs' copies are being taken up (one pass at a time). */
@@ -589,10 +584,10 @@ export class Workspace {
     if (this.takingUp.has(path)) return;
     this.takingUp.add(path);
     try {
-      for (const [tab] of othersCopies(localStorage.getItem(this.backupKey(path)), this.tabId)) {
+      for (const [tab] of this.copies.others(path, this.tabId)) {
         // a tab still open saves its own text (taken up here too, its overlap would be asked twice)
         if (await this.tabOpen(tab)) continue;
-        const copy = parseCopies(localStorage.getItem(this.backupKey(path))).get(tab);
+        const copy = this.copies.get(path, tab);
         if (!copy) continue; // saved by its tab meanwhile
         let fs: FileState;
         try {

@@ -885,10 +885,9 @@ describe('IDE in headless Chromium', () => {
       await route.continue().catch(() => undefined);
     });
     const sentInCopy = () => page.evaluate((p) => {
-      const key = Object.keys(localStorage).find((k) => k.startsWith('contract-studio:unsaved:') && k.endsWith(`:${p}`));
-      // this tab's copy (browser-copies.ts: one per tab, the only one here)
-      const copies = key ? (JSON.parse(localStorage.getItem(key)!) as { copies: Record<string, { sentText?: string }> }).copies : {};
-      return Object.values(copies)[0]?.sentText ?? '';
+      // this tab's copy (browser-copies.ts: one entry per file and tab, key prefix + JSON [root, path, tab]; the only one here)
+      const key = Object.keys(localStorage).find((k) => k.startsWith('contract-studio:unsaved-copy:') && JSON.parse(k.slice('contract-studio:unsaved-copy:'.length))[1] === p);
+      return key ? (JSON.parse(localStorage.getItem(key)!) as { sentText?: string }).sentText ?? '' : '';
     }, path);
     try {
       await placeCursor(page, 'asynchronous module MAB');

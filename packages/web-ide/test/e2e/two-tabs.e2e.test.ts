@@ -20,7 +20,10 @@ const writeByScript = (text: string) => {
   writeFileSync(join(s.workspace, '.script.tmp'), text);
   renameSync(join(s.workspace, '.script.tmp'), join(s.workspace, SCHED));
 };
-const backups = (page: Page) => page.evaluate((p) => Object.keys(localStorage).filter((k) => k.endsWith(`:${p}`)).map((k) => localStorage.getItem(k) ?? ''), SCHED);
+/** The browser's copies of the file (browser-copies.ts: one entry per tab, key prefix + JSON [root, path, tab]), and any entry of the older form (one per file). */
+const backups = (page: Page) => page.evaluate((p) => Object.keys(localStorage)
+  .filter((k) => (k.startsWith('contract-studio:unsaved-copy:') && JSON.parse(k.slice('contract-studio:unsaved-copy:'.length))[1] === p) || (k.startsWith('contract-studio:unsaved:') && k.endsWith(`:${p}`)))
+  .map((k) => localStorage.getItem(k) ?? ''), SCHED);
 
 describe('one file edited in two IDE tabs and by a script', () => {
   beforeAll(async () => {
@@ -105,9 +108,7 @@ describe('one file edited in two IDE tabs and by a script', () => {
     const copy = await backups(b);
     expect(copy).toHaveLength(1);
     // this tab's copy (browser-copies.ts: one per tab; B is the only tab of its browser)
-    const mine = Object.values((JSON.parse(copy[0]!) as { copies: Record<string, { text: string }> }).copies);
-    expect(mine).toHaveLength(1);
-    expect(mine[0]!.text).toContain('// from tab B');
+    expect((JSON.parse(copy[0]!) as { text: string }).text).toContain('// from tab B');
     expect(await b.locator('#status-save').textContent()).toMatch(/Overlapping edits/);
     // no save is retried while the user has not chosen
     const sent = puts.length;
@@ -189,7 +190,8 @@ describe('one file edited in two IDE tabs and by a script', () => {
     await waitSaved(b);
     const base = disk();
     const root = await b.evaluate(() => (window as any).__ide.workspace.root);
-    // the copy a tab kept before a reload: its text and the base it was edited from
+    // the copy a tab kept before a reload: its text and the base it was edited from, as an earlier
+    // version kept it (one entry per file): moved to this tab's own entry at the load, none lost
     const copy = { v: 1, text: base.replace('MSB;', 'MSB; // kept in the browser'), baseText: base, baseVersion: createHash('sha256').update(base).digest('hex') };
     // meanwhile another program changed another line
     writeByScript(base.replace('MSD;', 'MSD; // changed on disk'));
@@ -207,6 +209,8 @@ describe('one file edited in two IDE tabs and by a script', () => {
     await openFile(b, SCHED);
     expect(await activeValue(b)).toBe(expected);
     await expect.poll(() => activeValue(s.page), { timeout: 10_000 }).toBe(expected);
+    // the old entry is gone with the copy it held (moved, taken up, saved): nothing left to restore again
+    expect(await backups(b)).toEqual([]);
   });
 
   it('a script writing the file while the user types: both changes kept', async () => {
