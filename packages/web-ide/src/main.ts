@@ -88,6 +88,7 @@ async function main(): Promise<void> {
   // its functions read when it is shown (also by the layout restored after a reload), and the session this browser kept grown again
   ui.addPanel('simulate', 'Simulate', simulate.panel.element, () => void simulate.refreshFunctions());
   const views = new ViewsController({ editors, lsp, workspace, toolbar: ui.toolbar, project: currentProject });
+  runs.onLostRun.on(({ jobId }) => void monitor.listLost(jobId));
   runs.onRunLogs.on(({ jobId, logs }) => {
     void monitor.showRecorded(jobId, logs);
     views.showRun(logs);

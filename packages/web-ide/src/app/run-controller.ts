@@ -12,7 +12,7 @@ import type { SharedJob } from '../../server/api-types.js';
 const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
 /**
  * The job this tab follows or followed last, kept for a reload (sessionStorage: one per tab):
- * { jobId, project, ended, stopped, otherTabs, gone }. Replaced by the next job the tab follows;
+ * { jobId, action, project, ended, stopped, otherTabs, gone }. Replaced by the next job the tab follows;
  * removed when the build service no longer knows a job that had ended (it left the service's last
  * 50); one lost with the IDE server (`gone`) is kept, and every reload says it gone again.
  */
@@ -31,9 +31,10 @@ type RunSettings = { duration: number; start?: string; readyTimeout?: number; cp
  * The job a tab follows or followed last, whether it had ended (a reload shows it again), whether
  * this tab stopped it, for a job another tab started, what it was (its status says so again
  * after a reload), and whether it was lost with the IDE server (a reload says it gone again, in
- * the tab that started it as in those that followed it).
+ * the tab that started it as in those that followed it, and the Monitor lists its run so). `action`:
+ * a build or a Build & Run (not kept by earlier versions).
  */
-type Followed = { jobId: string; project: string; ended: boolean; stopped?: boolean; otherTabs?: SharedWhat; gone?: boolean };
+type Followed = { jobId: string; action?: 'build' | 'run'; project: string; ended: boolean; stopped?: boolean; otherTabs?: SharedWhat; gone?: boolean };
 type SharedWhat = 'Build & Run' | 'build';
 
 /** Whether `v` is a ready timeout a run may ask for (seconds: MIN_READY_TIMEOUT_SECONDS or more). */
@@ -55,6 +56,11 @@ function runSettings(where: string): RunSettings {
 export class RunController {
   /** A finished run's logs, fetched from the build service (the Monitor and the Timeline show them). */
   readonly onRunLogs = new Emitter<{ jobId: string; logs: RunLogs }>();
+  /**
+   * After a reload: the Build & Run this tab followed is lost with the IDE server (the restarted
+   * service does not know it, and collected no logs of it): the Monitor lists its run so.
+   */
+  readonly onLostRun = new Emitter<{ jobId: string }>();
   /** The project folder of the last Build & Run (gcc paths are relative to its src-gen/). */
   project = '';
   /** The last job another tab started while this tab was busy with its own (not followed then). */
@@ -95,7 +101,7 @@ export class RunController {
       this.cancelledHere = cancelledElsewhere ? { jobId, at: Date.now() } : undefined;
       if (cancelledElsewhere && next && next.id !== jobId) void this.followShared(next, { replacing: jobId });
     });
-    build.onStarted.on(({ jobId }) => this.keep({ jobId, project: this.project, ended: false }));
+    build.onStarted.on(({ jobId, action }) => this.keep({ jobId, action, project: this.project, ended: false }));
   }
 
   private keep(f: Followed): void {
@@ -109,10 +115,11 @@ export class RunController {
   /** The job this tab followed before a reload, as kept (anything else there is ignored). */
   private followed(): Followed | undefined {
     try {
-      const v = JSON.parse(sessionStorage.getItem(FOLLOWED_JOB_KEY) ?? 'null') as { jobId?: unknown; project?: unknown; ended?: unknown; stopped?: unknown; otherTabs?: unknown; gone?: unknown } | null;
+      const v = JSON.parse(sessionStorage.getItem(FOLLOWED_JOB_KEY) ?? 'null') as { jobId?: unknown; action?: unknown; project?: unknown; ended?: unknown; stopped?: unknown; otherTabs?: unknown; gone?: unknown } | null;
       if (v && typeof v.jobId === 'string' && JOB_ID.test(v.jobId)) {
         const otherTabs = v.otherTabs === 'Build & Run' || v.otherTabs === 'build' ? { otherTabs: v.otherTabs as SharedWhat } : {};
-        return { jobId: v.jobId, project: typeof v.project === 'string' ? v.project : '', ended: v.ended === true, stopped: v.stopped === true, ...otherTabs, ...(v.gone === true ? { gone: true } : {}) };
+        const action = v.action === 'build' || v.action === 'run' ? { action: v.action as 'build' | 'run' } : {};
+        return { jobId: v.jobId, ...action, project: typeof v.project === 'string' ? v.project : '', ended: v.ended === true, stopped: v.stopped === true, ...otherTabs, ...(v.gone === true ? { gone: true } : {}) };
       }
     } catch {
       /* not JSON */
@@ -141,8 +148,11 @@ export class RunController {
     // forgotten only when the service no longer knows it: a panel busy a moment, or a failed
     // request, keeps it for the next reload (it was dropped, and the job lost to this tab); one
     // lost with the server stays, said gone by every reload until the tab follows another job
-    if (resumed === 'gone' && lost) this.keep({ ...f, ended: true, gone: true });
-    else if (resumed === 'gone') sessionStorage.removeItem(FOLLOWED_JOB_KEY);
+    if (resumed === 'gone' && lost) {
+      this.keep({ ...f, ended: true, gone: true });
+      // its run too, in the Monitor's list (said lost there as before the reload), not gone from it without a word
+      if (f.action === 'run' || f.otherTabs === 'Build & Run') this.onLostRun.fire({ jobId: f.jobId });
+    } else if (resumed === 'gone') sessionStorage.removeItem(FOLLOWED_JOB_KEY);
     else if (resumed === 'followed') this.d.showPanel('output');
     return resumed === 'followed';
   }

@@ -209,6 +209,22 @@ export class MonitorController {
     void this.refreshSources();
   }
 
+  /**
+   * After a reload: Build & Run job `jobId`, which this tab followed, was lost with the IDE server
+   * (the restarted build service does not know it; it collected no CSV logs of it, its sandbox
+   * died with the old one). Its run is listed, and shown unless another run is, ended so — the
+   * same words as the tab said before the reload — with none of its records: what its stream
+   * brought was in the page before the reload, and nothing is left to read them from again.
+   */
+  async listLost(jobId: string): Promise<void> {
+    const id = `live:${jobId}`;
+    if (this.runs.has(id) || this.runs.has(`job:${jobId}`)) return; // followed here: its end says it
+    const label = endedRunLabel(liveRunLabel(jobId), true, LOST_WITH_SERVER);
+    this.runs.set(id, { id, label, model: new MonitorModel(), live: false, outcome: LOST_WITH_SERVER, project: this.deps.project() });
+    if (this.shown === undefined) await this.show(id);
+    else await this.refreshSources();
+  }
+
   /** Trace lines of live run `jobId` handed over by the page (tests): folded by its worker as if streamed. */
   feed(jobId: string, records: TraceLine[]): void {
     const m = this.runs.get(`live:${jobId}`)?.model;

@@ -9,7 +9,8 @@
  * killed; real build service, bwrap sandbox, headless Chromium.
  * Then each tab is reloaded: both say the job gone again, alike. The tab that had only followed the
  * run said "No build yet" and its Monitor "No run yet" (it forgot a job it had seen lost), where
- * the tab that started it said it gone.
+ * the tab that started it said it gone. And after the reload the Monitor's run list no longer had
+ * the run (the status bar and the log said it gone, the Monitor nothing): it lists it, ended: lost.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { chromium, type BrowserContext, type Page } from 'playwright-core';
@@ -48,6 +49,8 @@ const told = (page: Page) => page.evaluate(() => {
     lastLine: rows[rows.length - 1]?.textContent ?? '',
     monitor: (document.querySelector('.monitor-view') as HTMLElement | null)?.dataset.mode,
     monitorRun: document.querySelector('.monitor-source')?.textContent,
+    /** The Monitor's run list (its picker's entries). */
+    monitorRuns: [...document.querySelectorAll('.monitor-sources option')].map((o) => o.textContent ?? ''),
     canRun: !(document.getElementById('btn-run') as HTMLButtonElement).disabled,
   };
 });
@@ -125,6 +128,8 @@ describe.skipIf(!canBuild)('the IDE server killed during a Build & Run', () => {
       await tab.reload();
       await tab.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
       await expect.poll(async () => (await told(tab)).status, { timeout: 15_000 }).toBe('gone');
+      // the Monitor lists the run again, said lost as before the reload (its records were the page's: none left to read)
+      await expect.poll(async () => (await told(tab)).monitorRun ?? '', { timeout: 15_000 }).toContain('ended: lost with the IDE server');
       return told(tab);
     };
     const rb = await reloaded(b);
@@ -133,6 +138,11 @@ describe.skipIf(!canBuild)('the IDE server killed during a Build & Run', () => {
     await shot(b, 'server-killed-04-tab-b-reloaded');
     expect(rb).toEqual(ra);
     expect(rb.statusText).toBe(tb.statusText);
+    const job = /Build & Run job (\S+)/.exec(tb.monitorRun ?? '')?.[1];
+    expect(job, tb.monitorRun ?? '').toBeTruthy();
+    expect(rb.monitorRun).toBe(`Build & Run job ${job} · ended: lost with the IDE server (it was stopped or restarted, which ends its jobs)`);
+    expect(rb.monitorRuns.filter((o) => o.includes(`Build & Run job ${job} `)), rb.monitorRuns.join('\n')).toEqual([rb.monitorRun]);
+    expect(rb.monitor).toBe('replay');
     expect(rb.canRun).toBe(true);
     // and again: the lost job stays the tab's last until it follows another
     expect(await reloaded(b)).toEqual(rb);
