@@ -9,7 +9,10 @@
  * log passes 8 MiB in about 20 s of run, so a replay of a longer run lost its scheduler records.
  * The bound here is the build service's default for a collected log (the same files, had from a
  * Build & Run job; a run with a larger work dir may keep longer logs, up to 1 GiB, which
- * `contract trace` reads as a stream): LOG_READ_BYTES. The bytes are streamed from the file to the size seen when it was
+ * `contract trace` reads as a stream): LOG_READ_BYTES. A longer log is sent up to there, its size
+ * said (`x-log-bytes`, and `x-log-sent`: the bytes sent), the page keeping its whole lines and saying
+ * what it left (the records after: in the file, which `contract trace` reads whole); it was refused
+ * whole, and the replay missed all of it. The bytes are streamed from the file to the size seen when it was
  * opened (a log still written to stays whole up to there), never held whole in the server.
  */
 import type { IncomingMessage, ServerResponse } from 'node:http';
@@ -20,7 +23,7 @@ import type { WorkspacePaths } from './workspace-paths.js';
 import type { LogFolderListing } from './api-types.js';
 import { isLogFileName } from '@contract-studio/build-service/trace';
 
-/** Largest CSV log read for a replay (the build service's default ARTIFACT_BOUNDS.fileBytes: the page holds what it replays). */
+/** Most bytes of a CSV log read for a replay (the build service's default ARTIFACT_BOUNDS.fileBytes: the page holds what it replays; src/views/run-logs.ts LOG_READ_BYTES). */
 export const LOG_READ_BYTES = 256 * 1024 * 1024;
 
 /** Answers GET /api/log; false for any other request. */
@@ -32,13 +35,14 @@ export async function handleLogApi(paths: WorkspacePaths, req: IncomingMessage, 
     const { handle, stats: st } = await WorkspaceFs.openFile(dir, name, rel);
     try {
       if (!st.isFile()) throw new HttpError(400, `${rel} is a folder`);
-      if (st.size > LOG_READ_BYTES) throw new HttpError(413, `${rel} is larger than ${LOG_READ_BYTES / 1024 / 1024} MiB (${st.size} bytes): not read for a replay (the IDE replays files of at most that size; \`contract trace\` tells a log of any size)`);
-      res.writeHead(200, { 'content-type': 'text/plain; charset=utf-8', 'cache-control': 'no-store', 'x-log-bytes': String(st.size) });
-      if (st.size === 0) {
+      // a longer log: its first LOG_READ_BYTES (the page keeps their whole lines and says the rest is left)
+      const sent = Math.min(st.size, LOG_READ_BYTES);
+      res.writeHead(200, { 'content-type': 'text/plain; charset=utf-8', 'cache-control': 'no-store', 'x-log-bytes': String(st.size), 'x-log-sent': String(sent) });
+      if (sent === 0) {
         res.end();
         return;
       }
-      await pipeline(handle.createReadStream({ start: 0, end: st.size - 1, autoClose: false }), res);
+      await pipeline(handle.createReadStream({ start: 0, end: sent - 1, autoClose: false }), res);
     } finally {
       await handle.close().catch(() => undefined);
     }

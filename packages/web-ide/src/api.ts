@@ -115,11 +115,24 @@ export async function responsePieces(res: Response): Promise<string[]> {
 }
 
 /**
- * A CSV log of the workspace as text in pieces of whole lines (responsePieces; GET /api/log: bounded
- * for logs, not for the editor's tabs). `maxBytes`: a log larger than that (the server says its
- * size first) is not downloaded: 413.
+ * A log read for a replay: its text in pieces of whole lines, its size, and the bytes read of it
+ * (less than its size: the server sends a log's first LOG_READ_BYTES, of which the last line, cut, is
+ * left out too).
  */
-async function readLog(path: string, maxBytes = Infinity): Promise<string[]> {
+export interface ReadLog {
+  pieces: string[];
+  size: number;
+  read: number;
+  /** The bytes the server sent (its bound on one log, when less than `size`). */
+  sent: number;
+}
+
+/**
+ * A CSV log of the workspace as text in pieces of whole lines (responsePieces; GET /api/log: bounded
+ * for logs, not for the editor's tabs: a longer log's first bytes, whole lines). `maxBytes`: a log
+ * whose bytes sent are more than that (the server says them first) is not downloaded: 413.
+ */
+async function readLog(path: string, maxBytes = Infinity): Promise<ReadLog> {
   let res: Response;
   try {
     res = await fetch(`/api/log?path=${q(path)}`);
@@ -127,12 +140,24 @@ async function readLog(path: string, maxBytes = Infinity): Promise<string[]> {
     throw new ApiError(0, 'server unreachable');
   }
   const size = Number(res.headers.get('x-log-bytes') ?? 0);
-  if (res.ok && size > maxBytes) {
+  const sent = Number(res.headers.get('x-log-sent') ?? size);
+  if (res.ok && sent > maxBytes) {
     await res.body?.cancel().catch(() => undefined);
-    throw new ApiError(413, `${size} bytes, past the ${maxBytes} bytes left of the replay's bound`);
+    throw new ApiError(413, `${sent} bytes, past the ${maxBytes} bytes left of the replay's bound`);
   }
-  if (res.ok) return responsePieces(res);
+  if (res.ok) {
+    const pieces = await responsePieces(res);
+    return sent < size ? withoutCutLine(pieces, sent, size) : { pieces, size, read: sent, sent };
+  }
   throw errorOf(res.status, answerOf(await res.text().catch(() => '')));
+}
+
+/** The first bytes of a longer log (`size` bytes): their whole lines (the last one, cut where the bytes stop, is no record). */
+function withoutCutLine(pieces: string[], sent: number, size: number): ReadLog {
+  const last = pieces.pop() ?? '';
+  const end = last.lastIndexOf('\n') + 1;
+  if (end) pieces.push(last.slice(0, end));
+  return { pieces, size, read: sent - new TextEncoder().encode(last.slice(end)).length, sent };
 }
 
 /** The WebSocket URL of a path of this server (ws:, or wss: when the page came over https). */

@@ -428,19 +428,22 @@ export class MonitorController {
     const paths = listing.logs;
     // past the replay's bound the large module logs are left out, never ORD's nor the supervisors' (run-logs.ts replayOrder)
     const sizes = 'sizes' in listing ? listing.sizes : undefined;
-    const { files, problems, tooLarge } = await readWorkspaceLogs(paths, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes, { sizes, supervisors: await this.supervisorNames() });
+    const { files, problems, partly, tooLarge } = await readWorkspaceLogs(paths, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes, { sizes, supervisors: await this.supervisorNames() });
     // said in the label: a replay never misses a log silently; a run too long for the page is told
     // whole by the CLI, which reads it as a stream
     const leftOut = [...problems, ...listing.notRead];
     if (listing.notReadCount > listing.notRead.length) leftOut.push(`${listing.notReadCount - listing.notRead.length} more entries that are no regular file`);
     if (listing.more) leftOut.push(`${count(listing.more)} more CSV log(s) past the first ${listing.max}: a replay reads ${listing.max} at most`);
     const whole = tooLarge || listing.more ? ` — \`contract trace ${folder || '.'}\` tells a run of any length` : '';
-    const { model, leftOut: unread } = await recordedRun(files);
+    const { model, leftOut: notRecords } = await recordedRun(files);
+    // a log read in part (its first lines: past what the server sends of one) is said with how much, and where the rest is
+    const unread = [...partly, ...notRecords];
     const counted = unreadableNote(recordCounts(model));
     const inFolder = paths.length + listing.more + listing.notReadCount;
     const read = leftOut.length ? `${files.length} of ${inFolder} CSV logs in ${where}${counted} (left out: ${leftOut.join('; ')})${whole}` : `${files.length} CSV log(s) in ${where}${counted}`;
     const label = unread.length ? `${read} (not whole: ${unread.join('; ')})` : read;
-    const run: Run = { id: `dir:${folder}`, label, model, live: false, whole: true, project: this.deps.projectOf(folder ? `${folder}/x` : 'x') };
+    // (a log read in part does not run to the run's end: its module is not taken for one that ended without an exit record)
+    const run: Run = { id: `dir:${folder}`, label, model, live: false, whole: !partly.length, project: this.deps.projectOf(folder ? `${folder}/x` : 'x') };
     this.keepRecorded(run);
     // shown unless the user asked for another run while it was read and built: then listed
     if (mine === this.picked && (asked || this.shown === run.id)) await this.show(run.id);

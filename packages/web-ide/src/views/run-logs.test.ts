@@ -1,7 +1,7 @@
 import { describe, it, expect, afterEach, vi } from 'vitest';
 import { createServer, type Server } from 'node:http';
 import type { AddressInfo } from 'node:net';
-import { activationsFromLogs, fetchJobLogs, localLogFolders, readWorkspaceLogs, replayOrder } from './run-logs.js';
+import { activationsFromLogs, fetchJobLogs, localLogFolders, partlyReadText, readWorkspaceLogs, replayOrder } from './run-logs.js';
 import { PIECE_CHARS, responsePieces } from '../api.js';
 
 const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
@@ -163,6 +163,25 @@ describe('local run logs', () => {
       expect(problems).toEqual([`LOC_1.csv: ${sizes[0]} bytes, past the 0 bytes left of the replay's bound`]);
       expect(tooLarge).toBe(true);
       expect(asked).toEqual(['logs/ORD_1.csv', 'logs/SUP_1.csv', 'logs/MON_1.csv', 'logs/LOC_1.csv']); // LOC last: its size past what is left, its bytes not read
+    } finally {
+      vi.unstubAllGlobals();
+    }
+  });
+
+  it('reads the first bytes of a log longer than the server sends of one: its whole lines, and says how much and where the rest is', async () => {
+    const text = log('ORD', [1, 2, 3, 4, 5, 6]);
+    const sent = text.indexOf('4,w,ORD') + 3; // the bytes stop inside a line
+    vi.stubGlobal('fetch', async () => new Response(text.slice(0, sent), { headers: { 'x-log-bytes': String(text.length), 'x-log-sent': String(sent) } }));
+    try {
+      const { files, problems, partly, tooLarge } = await readWorkspaceLogs(['logs/ORD_1.csv'], (p) => p.slice(5));
+      const whole = text.slice(0, text.indexOf('4,w,ORD')); // up to the last line end sent
+      expect(files.map((f) => f.text)).toEqual([whole]);
+      expect(problems).toEqual([]);
+      expect(tooLarge).toBe(true);
+      expect(partly).toEqual([partlyReadText('ORD_1.csv', 'logs/ORD_1.csv', { read: whole.length, size: text.length, sent })]);
+      expect(partly[0]).toBe(`ORD_1.csv: only its first ${whole.length} bytes of ${text.length} bytes read (the IDE reads ${sent} bytes of a log for a replay): ` +
+        'its later records are not shown; the whole log is logs/ORD_1.csv in the workspace (`contract trace` reads it whole)');
+      expect(partlyReadText('X_1.csv', 'X_1.csv', { read: 268_000_000, size: 629_174_256, sent: 268_435_456 })).toMatch(/^X_1\.csv: only its first 255\.6 MiB of 600\.0 MiB read \(the IDE reads 256\.0 MiB of a log/);
     } finally {
       vi.unstubAllGlobals();
     }

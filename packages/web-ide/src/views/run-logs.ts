@@ -105,17 +105,32 @@ export function replayOrder<T extends { name: string; size?: number }>(logs: rea
     a.first !== b.first ? (a.first ? -1 : 1) : size(a.l) !== size(b.l) ? size(a.l) - size(b.l) : a.i - b.i).map((x) => x.l);
 }
 
+/** A size as the replay says it: `256.0 MiB`, `12.5 KiB`, `189 bytes`. */
+const sizeText = (bytes: number): string =>
+  bytes >= 1048576 ? `${(bytes / 1048576).toFixed(1)} MiB` : bytes >= 1024 ? `${(bytes / 1024).toFixed(1)} KiB` : `${bytes} bytes`;
+
+/**
+ * What a replay says of a log read only in part (longer than the IDE server sends of one: its first
+ * bytes, whole lines): how much, and where the rest is.
+ */
+export function partlyReadText(name: string, path: string, log: { read: number; size: number; sent: number }): string {
+  return `${name}: only its first ${sizeText(log.read)} of ${sizeText(log.size)} read (the IDE reads ${sizeText(log.sent)} of a log for a replay): ` +
+    `its later records are not shown; the whole log is ${path} in the workspace (\`contract trace\` reads it whole)`;
+}
+
 /**
  * Reads the workspace's CSV logs `paths` (GET /api/log), `maxBytes` in all: each file under the
  * name `nameOf(path)`; a log that cannot be read or is past the bound is a problem naming why, not
- * downloaded (`tooLarge`: one was past a bound). With `sizes` (each path's, GET /api/log-folder),
+ * downloaded (`tooLarge`: one was past a bound); a log longer than the server sends of one is read in
+ * part, its first lines, and said in `partly` (partlyReadText). With `sizes` (each path's, GET /api/log-folder),
  * they are read in replayOrder (`supervisors`: the model's), so that the bound leaves out the
  * large module logs, never the supervisors' nor ORD's; the files come back in the paths' order.
  */
 export async function readWorkspaceLogs(paths: readonly string[], nameOf: (path: string) => string, maxBytes = MAX_RUN_LOG_BYTES,
-  order?: { sizes?: readonly number[]; supervisors?: ReadonlySet<string> }): Promise<{ files: LogFile[]; problems: string[]; tooLarge: boolean }> {
+  order?: { sizes?: readonly number[]; supervisors?: ReadonlySet<string> }): Promise<{ files: LogFile[]; problems: string[]; partly: string[]; tooLarge: boolean }> {
   const read = new Map<string, LogFile>();
   const problems: string[] = [];
+  const partly: string[] = [];
   let tooLarge = false;
   let room = maxBytes;
   const sizes = order?.sizes;
@@ -125,16 +140,20 @@ export async function readWorkspaceLogs(paths: readonly string[], nameOf: (path:
   for (const p of ordered) {
     const name = nameOf(p);
     try {
-      const pieces = await api.readLog(p, room);
-      room -= piecesLength(pieces);
-      read.set(p, piecedLog(name, pieces));
+      const log = await api.readLog(p, room);
+      room -= log.read;
+      read.set(p, piecedLog(name, log.pieces));
+      if (log.read < log.size) {
+        partly.push(partlyReadText(name, p, log));
+        tooLarge = true;
+      }
     } catch (e) {
       problems.push(`${name}: ${(e as Error).message}`);
       tooLarge ||= e instanceof ApiError && e.status === 413;
     }
   }
   const files = paths.flatMap((p) => read.get(p) ?? []);
-  return { files, problems, tooLarge };
+  return { files, problems, partly, tooLarge };
 }
 
 /**
@@ -143,7 +162,8 @@ export async function readWorkspaceLogs(paths: readonly string[], nameOf: (path:
  * could not be read (the file itself, then its lines that are no record).
  */
 export async function readTraceFile(path: string, nameOf: (path: string) => string, maxBytes = MAX_RUN_LOG_BYTES): Promise<TraceFileLogs & { tooLarge: boolean }> {
-  const { files: read, problems, tooLarge } = await readWorkspaceLogs([path], nameOf, maxBytes);
+  const { files: read, problems: unread, partly, tooLarge } = await readWorkspaceLogs([path], nameOf, maxBytes);
+  const problems = [...unread, ...partly];
   if (!read[0]) return { files: [], problems, skipped: 0, unreadable: 0, order: new Uint16Array(0), tooLarge };
   // its JSON lines parsed in slices: the page draws and answers keys meanwhile
   const logs = await runSliced(traceFileToLogsSteps(path, read[0].text));

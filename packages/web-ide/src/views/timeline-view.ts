@@ -132,7 +132,8 @@ export class TimelineView {
     const folder = (held.find((f) => `local:${f.folder}` === this.source.value) ?? held[0])!.folder;
     const listing = await api.logFolder(folder).catch((e: Error) => ({ logs: csvs, more: 0, max: 0, notRead: [`${folder} could not be listed (${e.message}): its logs the Explorer shows are read`], notReadCount: 1 }));
     // past the bound, ORD's log (the schemas' activations) is read first, not left out by name order
-    const { files, problems } = await readWorkspaceLogs(listing.logs, (f) => f, undefined, { supervisors: new Set() });
+    const { files, problems: unread, partly } = await readWorkspaceLogs(listing.logs, (f) => f, undefined, { supervisors: new Set() });
+    const problems = [...unread, ...partly];
     const notRead = [...listing.notRead];
     if (listing.notReadCount > listing.notRead.length) notRead.push(`${listing.notReadCount - listing.notRead.length} more entries that are no regular file`);
     if (listing.more) notRead.push(`${listing.more} more CSV log(s) past the first ${listing.max}`);

@@ -110,12 +110,13 @@ describe('Monitor in headless Chromium', () => {
     mkdirSync(join(s.workspace, 'recorded'));
     cpSync(FIXTURE, join(s.workspace, 'recorded'), { recursive: true });
     // a longer run's logs (`contract run` writes them to PROJECT/logs): ORD's, past the editor's
-    // 8 MiB file bound, and one past the replay's 256 MiB bound (sparse: no disk used)
+    // 8 MiB file bound, and one past the 256 MiB the replay reads of a log: CTL's two records, then zeros (sparse: no disk used)
     mkdirSync(join(s.workspace, 'long-run'));
     const ord = ['mono_ns,wall_time,module,event,peer,port,size,detail', '999000000,2026-11-29T10:00:00.000000Z,ORD,scheduler,,,0,activate S'];
     for (let i = 0; i < LONG_RUN_RELEASES; i++) ord.push(`${1_000_000_000 + i * 1_000_000},2026-11-29T10:00:01.000000Z,ORD,ord_release,CTL,,0,schema=S cycle=${i} tick_ns=${1_000_000_000 + i * 1_000_000} release_ns=${1_000_000_100 + i * 1_000_000} release=${i + 1}`);
     writeFileSync(join(s.workspace, 'long-run', 'ORD_29-Nov-2026-10h00m00s.csv'), ord.join('\n') + '\n');
-    writeFileSync(join(s.workspace, 'long-run', 'CTL_29-Nov-2026-10h00m00s.csv'), '');
+    writeFileSync(join(s.workspace, 'long-run', 'CTL_29-Nov-2026-10h00m00s.csv'), ['mono_ns,wall_time,module,event,peer,port,size,detail',
+      '1000005000,2026-11-29T10:00:01.000000Z,CTL,run_started,ORD,,0,activation=1', '1000050000,2026-11-29T10:00:01.000000Z,CTL,run_finished,ORD,,0,activation=1 ACK_FINISHED', ''].join('\n'));
     truncateSync(join(s.workspace, 'long-run', 'CTL_29-Nov-2026-10h00m00s.csv'), 256 * 1024 * 1024 + 1);
     // a folder where a file named like a log is 40 MB of short lines that are no records
     mkdirSync(join(s.workspace, 'junk-run'));
@@ -264,13 +265,15 @@ describe('Monitor in headless Chromium', () => {
     expect(await marksOf(page)).toEqual(fromLogs);
   });
 
-  it('replays workspace logs past the editor\'s 8 MiB bound whole, and names a log it leaves out', async () => {
+  it('replays workspace logs past the editor\'s 8 MiB bound whole, a log past 256 MiB for its first 256 MiB (said), and names a log it leaves out', async () => {
     const { page } = s;
     await page.locator('.monitor-sources').selectOption('dir:long-run');
-    // before GET /api/log the replay took the logs through GET /api/file, 413 past 8 MiB, and left ORD's out without a word
-    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 })
-      .toMatch(/^1 of 2 CSV logs in long-run \(left out: CTL_29-Nov-2026-10h00m00s\.csv: .*larger than 256 MiB/);
-    expect(await page.evaluate(() => (window as any).__ide.monitor.current.recordCount)).toBe(LONG_RUN_RELEASES + 1);
+    // before GET /api/log the replay took the logs through GET /api/file, 413 past 8 MiB, and left ORD's out without a word;
+    // then a log past 256 MiB was left out whole (CTL's records too): now its first 256 MiB are read, its whole lines, and that is said
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 60_000 })
+      .toBe('2 CSV log(s) in long-run (not whole: CTL_29-Nov-2026-10h00m00s.csv: only its first 217 bytes of 256.0 MiB read (the IDE reads 256.0 MiB of a log for a replay): ' +
+        'its later records are not shown; the whole log is long-run/CTL_29-Nov-2026-10h00m00s.csv in the workspace (`contract trace` reads it whole))');
+    expect(await page.evaluate(() => (window as any).__ide.monitor.current.recordCount)).toBe(LONG_RUN_RELEASES + 1 + 2);
     await shot(page, 'monitor-02-replay-left-out');
     await page.locator('.monitor-view').focus();
     await page.keyboard.press('End');
@@ -281,7 +284,7 @@ describe('Monitor in headless Chromium', () => {
     await page.locator('.monitor-sources').selectOption('dir:recorded');
     await page.evaluate(() => (window as any).__ide.monitor.openFolder('long-run'));
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 })
-      .toMatch(/^0 of 2 CSV logs in long-run \(left out: ORD_29-Nov-2026-10h00m00s\.csv: \d+ bytes, past the 1000000 bytes left of the replay's bound; CTL_.*larger than 256 MiB.*\) — `contract trace long-run` tells a run of any length$/);
+      .toMatch(/^0 of 2 CSV logs in long-run \(left out: ORD_29-Nov-2026-10h00m00s\.csv: \d+ bytes, past the 1000000 bytes left of the replay's bound; CTL_29-Nov-2026-10h00m00s\.csv: 268435456 bytes, past the \d+ bytes left of the replay's bound\) — `contract trace long-run` tells a run of any length$/);
     // a trace file past it: named, and the command that tells it whole
     await page.evaluate(() => ((window as any).__ide.monitor.replayBytes = 1000));
     await page.evaluate(() => (window as any).__ide.monitor.openTraceFile('recorded.jsonl'));
