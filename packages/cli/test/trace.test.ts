@@ -275,6 +275,30 @@ describe('contract trace', () => {
         }
     });
 
+    it('a trace file of two simulations: each starts at time 0 again (no time-order warning, no record unreadable) and ends with its own counts', async () => {
+        const two = mkdtempSync(join(tmpdir(), 'contract-trace-two-sims-'));
+        try {
+            const sim = (name: string, t: string) => [
+                { kind: 'sim_start', monoNs: '0', wallTime: '', module: 'SIM', peer: '', port: null, size: 0, detail: `simulation start: ${name}` },
+                { kind: 'supervisor', monoNs: '1000000', wallTime: '', module: 'SUP', peer: '', port: null, size: 0, detail: 'function action started' },
+                { kind: 'sup_rule', monoNs: t, wallTime: '', module: 'SUP', peer: '', port: null, size: 0, detail: 'action.FIRST active cause=elapsed=1000000ns' },
+            ];
+            writeFileSync(join(two, 'sims.jsonl'), [...sim('a.scenario', '2000000000'), ...sim('b.scenario', '3000000')].map((r) => JSON.stringify(r)).join('\n') + '\n');
+            const io = capture(two);
+            expect(await runCli(['trace', 'sims.jsonl'], io)).toBe(0);
+            expect(io.stderr).toBe('');
+            const lines = io.stdout.trimEnd().split('\n');
+            const counts = lines.filter((l) => /^\d+ records: /.test(l));
+            expect(counts).toHaveLength(2);
+            for (const c of counts) expect(c).toMatch(/^2 records: .*1 rule change.*0 unreadable lines$/);
+            // the second simulation's story comes after the first one's counts, under its own heading
+            expect(lines.indexOf('--- simulation start: b.scenario')).toBeGreaterThan(lines.indexOf(counts[0]!));
+            expect(lines.filter((l) => l.startsWith('+0.002000s SUP  rule action.FIRST active'))).toHaveLength(1);
+        } finally {
+            rmSync(two, { recursive: true });
+        }
+    });
+
     it('a trace file cannot forge story lines: a newline or a bidi override in a detail or a reason stays inside its line', async () => {
         const odd = mkdtempSync(join(tmpdir(), 'contract-trace-forge-'));
         try {

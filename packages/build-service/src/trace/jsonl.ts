@@ -82,7 +82,10 @@ export function jsonLineToCsv(line: string): JsonLineRead {
 export function recordOfJsonLine(file: string, lineNo: number, line: string, clocks?: LogClocks): TraceRecord | undefined {
     if (line.trim() === '') return undefined;
     const read = jsonLineToCsv(line);
-    if ('simStart' in read) return read.simStart;
+    if ('simStart' in read) {
+        clocks?.reset(); // the next simulation starts at time 0 again: no time of the last one's is 'before'
+        return read.simStart;
+    }
     if ('carried' in read) return read.carried;
     if ('problem' in read) return { kind: 'unknown', file, line: lineNo, reason: read.problem, text: line.slice(0, 200) };
     const record = parseRecordLine(file, lineNo, read.csv, clocks?.of(read.module));

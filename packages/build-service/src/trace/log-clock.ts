@@ -130,4 +130,8 @@ export class LogClocks {
         if (!c) this.clocks.set(key, (c = new LogClock()));
         return c;
     }
+    /** Every log's time starts again (a trace file's next simulation, at time 0: its `sim_start`). */
+    reset(): void {
+        this.clocks.clear();
+    }
 }

@@ -74,7 +74,8 @@ async function traceFile(path: string, arg: string, format: string, io: CliIO): 
         io.err(`contract trace: cannot read ${safeName(arg)}: ${handle.message}\n`);
         return EXIT_FAILURE;
     }
-    const story = new Story(new ModuleEnds([], arg)); // the file's own bad lines are named on stderr below
+    let story = new Story(new ModuleEnds([], arg)); // the file's own bad lines are named on stderr below
+    let simulations = 0;
     let records = 0;
     let problems = 0;
     try {
@@ -87,8 +88,14 @@ async function traceFile(path: string, arg: string, format: string, io: CliIO): 
                     if (problems++ < NAMED_PROBLEMS) io.err(`contract trace: warning: ${safeName(arg)}:${r.line}: ${r.reason}\n`);
                 } else if (!isUnknown(r) && r.kind !== 'sim_start') records++;
                 if (format === 'json') piece += jsonLine(r) + '\n';
-                else if (r.kind === 'sim_start') piece += `--- ${safeName((r as TraceRecordBase).detail)}\n`; // a simulation's story starts (at time 0 again)
-                else piece += story.line(r);
+                else if (r.kind === 'sim_start') {
+                    // a simulation's story starts (at time 0 again): the one before it ends with its own counts
+                    if (simulations++ > 0) {
+                        piece += story.end();
+                        story = new Story(new ModuleEnds([], arg));
+                    }
+                    piece += `--- ${safeName((r as TraceRecordBase).detail)}\n`;
+                } else piece += story.line(r);
             }
             if (!(await print(io, piece))) return EXIT_OK;
         }
