@@ -18,8 +18,15 @@ function includedTypes(m: Module): string[] {
     return [...new Set(all.flatMap((p) => namedTypeOf(p.type) ?? []))];
 }
 
-const EVENT_DEFAULT = `(void)receiverport; (void)senderport; (void)sendermodule; (void)eventProductionTime; (void)eventReceptionTime;
-//TODO : implement the code for reaction to event notifications
+/**
+ * The parameters of `_react_to_event` and `_react_to_parameterizing`, cast to void in the skeleton
+ * before their region: any body (the default, yours, an older generator's or the ContrACT Eclipse
+ * tool's, which had no casts) compiles with -Wall -Wextra without an unused-parameter warning.
+ */
+const EVENT_PARAMS_USED = '(void)receiverport; (void)senderport; (void)sendermodule; (void)eventProductionTime; (void)eventReceptionTime;';
+const PARAM_PARAMS_USED = '(void)parameterport; (void)productionTime; (void)receptionTime;';
+
+const EVENT_DEFAULT = `//TODO : implement the code for reaction to event notifications
 /* example pattern for implementing this function
 if (strlen(sendermodule) != 0){//event incoming in a port of the module
     switch(receiverport){
@@ -37,8 +44,7 @@ else{//event coming from the specified port of the sender module
 */
 `;
 
-const PARAM_DEFAULT = `(void)parameterport; (void)productionTime; (void)receptionTime;
-//TODO : implement the code for reaction to parameterizing requests
+const PARAM_DEFAULT = `//TODO : implement the code for reaction to parameterizing requests
 /* example pattern for implementing this function
 switch(parameterport){
     case 0: ...
@@ -357,12 +363,14 @@ export function generateModuleSource(m: Module, priority: number, index: Archite
         ${reactsToEvents ? expandToNode`
 
             void _react_to_event(int receiverport, int senderport, char * sendermodule, RTIME * eventProductionTime, RTIME * eventReceptionTime){
+                ${EVENT_PARAMS_USED}
                 ${blockRegion(`protect_event_${M}`, EVENT_DEFAULT)}
             }
         ` : undefined}
         ${reactsToParams ? expandToNode`
 
             void _react_to_parameterizing(int parameterport, RTIME * productionTime, RTIME * receptionTime){
+                ${PARAM_PARAMS_USED}
                 ${blockRegion(`protect_param_${M}`, PARAM_DEFAULT)}
             }
         ` : undefined}

@@ -207,6 +207,23 @@ export function loadManifest(tree: OutputTree): ManifestLoad {
     return { manifest: { files, skeletons, skeletonLines: skeletonLineTable, userCode }, problems };
 }
 
+/**
+ * The default hashes to record for a file as merged (`text`, well formed): the fresh output's
+ * (`fresh`), but a region that still holds the default the generator wrote there before
+ * (`previous`, the manifest's), which this generator writes differently, keeps that hash: an
+ * ENABLED region is kept byte for byte, and an older default left in it is still no user code
+ * (not listed in Manifest.userCode, not orphaned when its region goes, replaced when ENABLED is removed).
+ */
+export function mergedDefaults(text: string, file: string, fresh: Record<string, string>, previous: Record<string, string> | undefined): Record<string, string> {
+    if (previous === undefined) return fresh;
+    const kept = { ...fresh };
+    for (const r of parseRegions(text, file).regions) {
+        const old = previous[r.id];
+        if (old !== undefined && fresh[r.id] !== undefined && old !== fresh[r.id] && hashContent(r.content) === old) kept[r.id] = old;
+    }
+    return kept;
+}
+
 /** What a region ID in Manifest.userCode looks like (the generator's IDs); anything else is ignored. */
 const REGION_ID = /^[A-Za-z_][A-Za-z0-9_]{0,254}$/;
 /** More regions than a generated file has: such a list is ignored. */

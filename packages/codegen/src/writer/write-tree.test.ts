@@ -105,6 +105,25 @@ describe('writeTree', () => {
         expect(r.updated).toEqual(['generated/t.h']);
     });
 
+    it('a region still holding a default the generator changed since is kept, and stays no user code (not recorded as such, not orphaned)', () => {
+        const dir = out();
+        const reacting = (body: string, regions = true): GeneratedFile => ({
+            path: 'generated/m.c',
+            content: `void react(int port){\n${regions ? region('protect_event_M', body) : ''}\n}\n`,
+        });
+        const before = '\n(void)port;\n//TODO\n';
+        writeTree(dir, [reacting(before)]);
+        // the newer generator's default lost the cast: the region keeps the old one, byte for byte
+        writeTree(dir, [reacting('\n//TODO\n')]);
+        expect(readFileSync(join(dir, 'generated/m.c'), 'utf8')).toBe(reacting(before).content);
+        const manifest = JSON.parse(readFileSync(join(dir, MANIFEST_NAME), 'utf8')) as { userCode?: unknown };
+        expect(manifest.userCode).toBeUndefined();
+        // still the generator's the time after, and when the region goes
+        expect(writeTree(dir, [reacting('\n//TODO\n')]).filesWritten).toBe(0);
+        const gone = writeTree(dir, [reacting('', false)]);
+        expect([gone.orphaned, gone.warnings]).toEqual([[], []]);
+    });
+
     it('moves a deleted entity file holding user code to orphans/ and removes one without user code', () => {
         const dir = out();
         writeTree(dir, [file('generated/m/A.c', 'x'), file('generated/n/B.c', 'x'), file('generated/k.c', 'x')]);

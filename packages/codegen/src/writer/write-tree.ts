@@ -7,7 +7,7 @@ import { RegionSyntaxError } from '../regions/region-error.js';
 import { bytesOf, toByteString } from './byte-string.js';
 import { blankLines, decodeLineHashes, describeEdits, editsOutside, regionLineHashes, runsText, skeletonLines } from './skeleton-lines.js';
 import { linesNotRegenerated } from './outside-regions.js';
-import { CONFLICTED, MANIFEST_NAME, fileRecord, hasCrlfEndings, hashContent, loadManifest, looksLikeDefault, manifestTextLike, regionsHoldingCode, serialiseManifest, skeletonHash, unreadableManifestAdvice, type ManifestLoad } from './manifest.js';
+import { CONFLICTED, MANIFEST_NAME, fileRecord, hasCrlfEndings, hashContent, loadManifest, looksLikeDefault, mergedDefaults, manifestTextLike, regionsHoldingCode, serialiseManifest, skeletonHash, unreadableManifestAdvice, type ManifestLoad } from './manifest.js';
 import { ORPHANS_DIR, existingOrphans, fileOrphanText, regionOrphanText, writeOrphan } from './orphans.js';
 import { OutputTree } from './output-tree.js';
 import { emptyReport, type GenerationReport } from './report.js';
@@ -452,7 +452,9 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                     message: `is ${merged.text.length} bytes with its protected regions, above the ${MAX_SOURCE_BYTES} a build reads of a project's file (and the IDE opens): contract build and Build & Run will refuse the project; keep large data out of the regions (a file the code reads)`,
                 });
             }
-            const held = merged.text === generated ? [] : regionsHoldingCode(merged.text, file.path, record.defaults);
+            const defaults = merged.text === generated ? record.defaults : mergedDefaults(merged.text, file.path, record.defaults, oldDefaults(file.path));
+            newManifest.set(file.path, defaults);
+            const held = merged.text === generated ? [] : regionsHoldingCode(merged.text, file.path, defaults);
             if (held.length > 0) newUserCode.set(file.path, held);
             if (merged.text === original) {
                 report.unchanged.push(file.path);

@@ -303,8 +303,8 @@ void _exec_module_state(int * stateindex){//state from 0 to x with x > 0, if sta
 }
 
 void _react_to_event(int receiverport, int senderport, char * sendermodule, RTIME * eventProductionTime, RTIME * eventReceptionTime){
+    (void)receiverport; (void)senderport; (void)sendermodule; (void)eventProductionTime; (void)eventReceptionTime;
     /*PROTECTED REGION ID(protect_event_MAA) ENABLED START*/
-    (void)senderport; (void)eventProductionTime; (void)eventReceptionTime;
     switch(receiverport){
         case 0:
             printf("MAA : control event '%s' from %s\n", controlevent, strlen(sendermodule) ? sendermodule : "?");
@@ -316,8 +316,8 @@ void _react_to_event(int receiverport, int senderport, char * sendermodule, RTIM
 }
 
 void _react_to_parameterizing(int parameterport, RTIME * productionTime, RTIME * receptionTime){
+    (void)parameterport; (void)productionTime; (void)receptionTime;
     /*PROTECTED REGION ID(protect_param_MAA) ENABLED START*/
-    (void)productionTime; (void)receptionTime;
     if (parameterport == 0){
         printf("MAA : new param ");
         print_TypeA(&param);

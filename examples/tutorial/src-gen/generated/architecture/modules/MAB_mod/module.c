@@ -247,8 +247,8 @@ void _exec_module_state(int * stateindex){//state from 0 to x with x > 0, if sta
 }
 
 void _react_to_event(int receiverport, int senderport, char * sendermodule, RTIME * eventProductionTime, RTIME * eventReceptionTime){
+    (void)receiverport; (void)senderport; (void)sendermodule; (void)eventProductionTime; (void)eventReceptionTime;
     /*PROTECTED REGION ID(protect_event_MAB) ENABLED START*/
-    (void)senderport; (void)sendermodule; (void)eventProductionTime; (void)eventReceptionTime;
     if (receiverport == 0){
         printf("MAB : received message type notification ");
         print_TypeC(&message_type_notification);
