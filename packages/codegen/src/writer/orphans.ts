@@ -47,9 +47,11 @@ export function writeOrphan(tree: OutputTree, path: string, content: string): { 
 }
 
 const HEADER_START = '/* Orphaned user code';
+/** The start of the header of a copy made with no record of what the generator wrote (reason `unrecorded`): perhaps no user code at all. */
+const COPY_HEADER_START = '/* Copy of';
 
 function withoutHeader(text: string): string {
-    return text.startsWith(HEADER_START) ? text.slice(text.indexOf('*/\n') + 3) : text;
+    return text.startsWith(HEADER_START) || text.startsWith(COPY_HEADER_START) ? text.slice(text.indexOf('*/\n') + 3) : text;
 }
 
 /** The entity a generated path is named after (docs/codegen.md, generated tree). */
@@ -64,10 +66,12 @@ export function orphanEntity(path: string): string {
 
 /**
  * Why code went to orphans/: its regions vanished from the generated code, its whole file did
- * (entity deleted), its regions were not ENABLED (the generator put its default back), or the file
- * was edited outside its regions (the generator rewrote the file).
+ * (entity deleted), its regions were not ENABLED (the generator put its default back), the file
+ * was edited outside its regions (the generator rewrote the file), or (`unrecorded`) with no record
+ * of what a generator wrote in it, it held lines outside its regions that this generator does not
+ * write: an older generator's, or the user's (docs/codegen.md, "Without a record").
  */
-export type OrphanReason = 'vanished' | 'deleted' | 'disabled' | 'skeleton';
+export type OrphanReason = 'vanished' | 'deleted' | 'disabled' | 'skeleton' | 'unrecorded';
 
 /**
  * The comment an orphan file starts with: which entity and file the code came from, when it was
@@ -83,6 +87,17 @@ function orphanHeader(path: string, ids: string[], when: Date, reason: OrphanRea
             ` * To bring the code back: paste each region's content into the region of the same ID in ${path}, make its start\n` +
             ` * marker say ENABLED again (PROTECTED REGION ID(<id>) ENABLED START), then generate.\n` +
             ` * Then delete this file. (Removing ENABLED is the way to ask for the default: if you meant that, just delete this file.) */\n`;
+    }
+    if (reason === 'unrecorded') {
+        return `${COPY_HEADER_START} ${path} (${orphanEntity(path)}), made on ${when.toISOString()} before it was regenerated.\n` +
+            ` * It held lines outside its protected regions that this generator does not write (${ids.join('; ')}):\n` +
+            ` * an older generator's lines (another version of ContrACT Studio, or another tool such as the ContrACT Eclipse tool),\n` +
+            ` * or code of yours; with no record of what was generated, the generator cannot tell which, so it keeps this copy.\n` +
+            ` * Its protected regions' code was kept in the regenerated file. Below is the file as it was, byte for byte.\n` +
+            ` * If some of those lines are code of yours, move it into a protected region of ${path} (declarations in\n` +
+            ` * protect_internal_vars_/protect_internal_functions_decl_, functions in protect_internal_functions_impl_, includes in\n` +
+            ` * protect_additional_import_...), then generate. If they are only an older generator's lines, nothing is lost.\n` +
+            ` * Then delete this file. */\n`;
     }
     if (reason === 'skeleton' && regionless) {
         return head +
@@ -126,8 +141,9 @@ export function regionOrphanText(path: string, source: string, regions: Region[]
 /**
  * The text of the orphan of a whole file, the header then the file as it was: its entity
  * disappeared (`ids`: its user regions), or (`skeleton`) it was edited outside its regions (`ids`:
- * what is known of where, e.g. the first line that differs).
+ * what is known of where, e.g. the first line that differs), or (`unrecorded`) with no record of
+ * what was generated, it held lines outside its regions this generator does not write (`ids`: which, and why no record).
  */
-export function fileOrphanText(path: string, source: string, ids: string[], when = new Date(), reason: 'deleted' | 'skeleton' = 'deleted'): string {
+export function fileOrphanText(path: string, source: string, ids: string[], when = new Date(), reason: 'deleted' | 'skeleton' | 'unrecorded' = 'deleted'): string {
     return orphanHeader(path, ids, when, reason, !source.includes('PROTECTED REGION ID(')) + source;
 }

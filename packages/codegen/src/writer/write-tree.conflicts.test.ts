@@ -99,7 +99,7 @@ describe('writeTree: a manifest holding git merge conflict markers', () => {
         const report = writeTree(dir, [module('GTG')]);
         expect(report.orphaned).toEqual([`orphans/${path}`]);
         expect(readFileSync(join(dir, 'orphans', path), 'utf8')).toContain(helper);
-        expect(report.warnings).toContainEqual({ file: path, line: 7, message: expect.stringContaining('differs outside its protected regions from what the generator now writes (line 7 not in the regenerated file), and the manifest holds git merge conflict markers, so the generator cannot tell its own lines (an older version\'s among them) from code written outside the protected regions: the file as it was is copied to orphans/') });
+        expect(report.warnings).toContainEqual({ file: path, line: 7, message: expect.stringContaining('holds lines outside its protected regions that this generator does not write (line 7 not in the regenerated file): an older generator\'s lines or code of yours, and the manifest holds git merge conflict markers, so the generator cannot tell which: the file as it was is copied to orphans/') });
         // the manifest is written anew: the next generation knows the regenerated file
         expect(readFileSync(join(dir, MANIFEST_NAME), 'utf8')).not.toContain('<<<<<<<');
         expect(writeTree(dir, [module('GTG')]).orphaned).toEqual([]);

@@ -200,7 +200,7 @@ describe('code written outside the protected regions', () => {
         write(dir, A, read(dir, A).replace('int step(void);\n', 'int step(void);\nint mine;\n'));
         const old = writeTree(dir, [file()]);
         expect(old.orphaned).toEqual([`orphans/${A}`]);
-        expect(old.warnings).toEqual([{ file: A, line: 4, message: expect.stringContaining('differs outside its protected regions from what the generator now writes (line 4 not in the regenerated file), and the manifest holds no record of its text (a manifest of an older version), so the generator cannot tell its own lines') }]);
+        expect(old.warnings).toEqual([{ file: A, line: 4, message: expect.stringContaining('holds lines outside its protected regions that this generator does not write (line 4 not in the regenerated file): an older generator\'s lines or code of yours, and the manifest holds no record of its text (a manifest of an older version), so the generator cannot tell which') }]);
         expect(read(dir, `orphans/${A}`)).toContain('int mine;\n');
         expect(read(dir, A)).toBe(file().content);
         expect(manifest(dir).skeletons).toEqual({ [A]: hashContent(skeletonText(file().content, A)) });
@@ -227,13 +227,40 @@ describe('code outside the protected regions with no record of what the generato
         write(dir, A, edited);
         rmSync(join(dir, MANIFEST_NAME));
         const build = writeTree(dir, [file()], { displacedCode: 'refuse' });
-        expect(build.errors).toEqual([{ file: A, line: 4, message: expect.stringMatching(/^differs outside its protected regions from what the generator now writes \(line 4 not in the regenerated file\), and there is no manifest \(\.contract-manifest\.json\) recording what the generator wrote, .*: a build leaves no user code out; .*left untouched$/) }]);
+        expect(build.errors).toEqual([{ file: A, line: 4, message: expect.stringMatching(/^holds lines outside its protected regions that this generator does not write \(line 4 not in the regenerated file\): an older generator's lines or code of yours, and there is no manifest \(\.contract-manifest\.json\) recording what the generator wrote, so the generator cannot tell which: a build leaves no user code out; .*left untouched$/) }]);
         expect(read(dir, A)).toBe(edited);
+        rmSync(join(dir, MANIFEST_NAME)); // the one the build wrote beside (a build runs in its own copy of the project)
         const r = writeTree(dir, [file()]);
         expect(r.orphaned).toEqual([`orphans/${A}`]);
-        expect(r.warnings).toEqual([{ file: A, line: 4, message: expect.stringContaining(`the file as it was is copied to orphans/${A} before it is regenerated`) }]);
+        expect(r.warnings).toEqual([{ file: MANIFEST_NAME, message: expect.stringContaining(`1 file holds lines outside the protected regions that this generator does not write, an older generator's lines or code of yours (it cannot tell which): each was regenerated, its regions' code kept, and copied first as it was to orphans/ under its own path (orphans/${A})`) }]);
         expect(read(dir, `orphans/${A}`)).toContain(helper);
         expect(read(dir, A)).toBe(file().content);
+    });
+
+    it('a tree from another version or tool (no manifest at all): one warning for all the copies, and each copy\'s header says what is true (an older generator\'s lines, or yours)', () => {
+        const dir = out();
+        const names = ['MAA', 'MAB', 'MSA', 'MSB', 'MSC'];
+        const modules = names.map((n): GeneratedFile => ({ path: `generated/modules/${n}_mod/module.c`, content: file().content.replaceAll('MSC', n) }));
+        writeTree(dir, modules);
+        rmSync(join(dir, MANIFEST_NAME));
+        // the old tool's template lines: a comment it wrote, a global it declared
+        for (const m of modules) write(dir, m.path, read(dir, m.path).replace('// generated\n', '//          module source file\n').replace('int step(void);\n', 'int step(void);\nFILE* logFile;\n'));
+        const r = writeTree(dir, modules);
+        const copies = modules.map((m) => `orphans/${m.path}`);
+        expect(r.orphaned).toEqual(copies);
+        expect(r.warnings).toEqual([{
+            file: MANIFEST_NAME,
+            message: `not there: this tree has no record of what was generated in it (a tree of another version of ContrACT Studio, or of another tool such as the ContrACT Eclipse tool?). 5 files hold lines outside the protected regions that this generator does not write, an older generator's lines or code of yours (it cannot tell which): each was regenerated, its regions' code kept, and copied first as it was to orphans/ under its own path (${copies.slice(0, 3).join(', ')} and 2 more). Move any code of yours found there into a protected region, then delete the copies; an older generator's lines need nothing. The manifest is written now: the next generation tells the generator's lines from yours`,
+        }]);
+        const copy = read(dir, copies[0]!);
+        expect(copy).toMatch(/^\/\* Copy of generated\/modules\/MAA_mod\/module\.c \(module or supervisor MAA\), made on \d{4}-\d\d-\d\dT[^ ]+ before it was regenerated\.\n/);
+        expect(copy).toContain('It held lines outside its protected regions that this generator does not write (lines 1, 4 not in the regenerated file; there is no manifest (.contract-manifest.json) recording what the generator wrote)');
+        expect(copy).toContain("an older generator's lines (another version of ContrACT Studio, or another tool such as the ContrACT Eclipse tool),\n * or code of yours");
+        expect(copy).not.toContain('edited outside');
+        expect(copy).toContain('FILE* logFile;\n'); // the file as it was
+        // nothing more to say: the manifest now records the generation; the same copy again is not written twice
+        const again = writeTree(dir, modules);
+        expect([again.orphaned, again.warnings, again.filesWritten]).toEqual([[], [], 0]);
     });
 
     it('an unmodified generated file, one with code in its regions only, one whose generated lines were removed, re-indented or re-spaced (an older generator\'s spacing), or one with a region the new output drops: not copied', () => {
@@ -280,8 +307,8 @@ describe('code outside the protected regions with no record of what the generato
         const r = writeTree(dir, [file()]);
         expect(r.orphaned).toEqual([`orphans/${A}`]);
         expect(r.warnings[0]!.message).toContain('(line 1 not in the regenerated file)');
-        expect(r.warnings[0]!.message).toContain("cannot tell its own lines (an older version's among them) from code written outside the protected regions");
-        expect(r.warnings[0]!.message).toContain('lines of an older generator need nothing: then delete the copy');
+        expect(r.warnings[0]!.message).toContain("an older generator's lines or code of yours, and the manifest holds no record of its text (a manifest of an older version), so the generator cannot tell which");
+        expect(r.warnings[0]!.message).toContain("then delete the copy; an older generator's lines need nothing");
     });
 });
 

@@ -234,6 +234,10 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         if (held !== undefined) newUserCode.set(path, held);
         else newUserCode.delete(path);
     };
+    /** No manifest there at all (not an unreadable or older one): a tree of another version or tool, or one whose manifest was deleted. */
+    const noManifestAtAll = !loaded.manifest && unreadable === undefined && !manifestRefused;
+    /** The copies in orphans/ of the files that, with no manifest at all, held lines this generator does not write: one warning for them all. */
+    const copiedWithoutRecord: string[] = [];
     const sorted = [...files].sort((a, b) => (a.path < b.path ? -1 : a.path > b.path ? 1 : 0));
     const produced = new Set(sorted.map((f) => f.path));
     /** Every region ID of the new output, read once when a carry-over asks (carry-renamed-regions.ts). */
@@ -368,7 +372,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             merged.orphans = merged.orphans.filter((r) => !carriedOut.some((m) => m.id === r.id));            // user code this generation would move aside: code outside the regions (the skeleton
             // differs from the one written last time, and from the fresh one: a file edited into what
             // the generator now writes loses nothing), regions without ENABLED, vanished regions
-            const displaced: { line: number; what: string; orphan: () => string; message: (orphan: string) => string }[] = [];
+            const displaced: { line: number; what: string; orphan: () => string; message: (orphan: string) => string; unrecorded?: { where: string } }[] = [];
             const recorded = recordedSkeleton(file.path);
             // a region of another file found here is none of this file's skeleton (carried home, or orphaned below)
             const ownSkeleton = () => {
@@ -395,12 +399,13 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                 const lost = linesNotRegenerated(existing, merged.text, file.path);
                 if (lost.length > 0) {
                     const where = `${runsText(lost)} not in the regenerated file`;
-                    const why = `${noRecord()}, so the generator cannot tell its own lines (an older version's among them) from code written outside the protected regions`;
+                    const what = `holds lines outside its protected regions that this generator does not write (${where}): an older generator's lines or code of yours, and ${noRecord()}, so the generator cannot tell which`;
                     displaced.push({
                         line: lost[0]!,
-                        what: `differs outside its protected regions from what the generator now writes (${where}), and ${why}`,
-                        orphan: () => fileOrphanText(file.path, original, [`${where}; ${why}`], undefined, 'skeleton'),
-                        message: (orphan) => `differs outside its protected regions from what the generator now writes (${where}), and ${why}: the file as it was is copied to ${orphan} before it is regenerated (move any code of yours there into a protected region; lines of an older generator need nothing: then delete the copy)`,
+                        what,
+                        orphan: () => fileOrphanText(file.path, original, [`${where}; ${noRecord()}`], undefined, 'unrecorded'),
+                        message: (orphan) => `${what}: the file as it was is copied to ${orphan} before it is regenerated (move any code of yours there into a protected region, then delete the copy; an older generator's lines need nothing)`,
+                        unrecorded: { where },
                     });
                 }
             }
@@ -440,7 +445,9 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                 const orphan = writeOrphan(tree, file.path, d.orphan());
                 if (orphan.written) report.filesWritten++;
                 report.orphaned.push(orphan.path);
-                report.warnings.push({ file: file.path, line: d.line, message: d.message(orphan.path) });
+                // a tree with no manifest at all (another version's or tool's): said once, below
+                if (d.unrecorded && noManifestAtAll) copiedWithoutRecord.push(orphan.path);
+                else report.warnings.push({ file: file.path, line: d.line, message: d.message(orphan.path) });
             }
             // a file with CRLF line endings (a Windows checkout) keeps them: the generator's lines are
             // written CRLF too, not LF beside the regions' CRLF (every line a diff)
@@ -518,6 +525,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         }
     }
 
+    if (copiedWithoutRecord.length > 0) report.warnings.unshift({ file: MANIFEST_NAME, message: unrecordedTreeSummary(copiedWithoutRecord) });
     if (unreadableNote && refusedUnrecorded && !refuseDisplacing) {
         // written anew, it would hold no record of the refused files: once resolved, their code
         // outside the regions would pass for the generator's. Left as it is, the next generation
@@ -542,6 +550,20 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     for (const list of [report.created, report.updated, report.unchanged]) list.sort();
     refusals.report(report);
     return report;
+}
+
+/** How many copies the summary of a tree without a manifest names; the rest are counted (all are in the report's `orphaned`). */
+const NAMED_COPIES = 3;
+
+/**
+ * The one warning for a tree with no manifest at all (docs/codegen.md, "Without a record"): its
+ * files holding lines outside their regions that this generator does not write were copied to
+ * `copies` (orphans/...) before they were regenerated.
+ */
+function unrecordedTreeSummary(copies: readonly string[]): string {
+    const named = copies.slice(0, NAMED_COPIES).join(', ') + (copies.length > NAMED_COPIES ? ` and ${copies.length - NAMED_COPIES} more` : '');
+    const files = copies.length === 1 ? '1 file holds' : `${copies.length} files hold`;
+    return `not there: this tree has no record of what was generated in it (a tree of another version of ContrACT Studio, or of another tool such as the ContrACT Eclipse tool?). ${files} lines outside the protected regions that this generator does not write, an older generator's lines or code of yours (it cannot tell which): each was regenerated, its regions' code kept, and copied first as it was to ${ORPHANS_DIR}/ under its own path (${named}). Move any code of yours found there into a protected region, then delete the copies; an older generator's lines need nothing. The manifest is written now: the next generation tells the generator's lines from yours`;
 }
 
 /**
