@@ -96,6 +96,28 @@ describe('gcc diagnostics', () => {
     expect(diags.find((d) => d.severity === 'warning')?.option).toBe('-Wunused-variable');
   });
 
+  test("the ContrACT Eclipse tool's logFile used in a region: the error says it is gone and what replaces it (JSON and text, C and UTF-8 locales)", () => {
+    const old = ['#include <stdio.h>', 'void _exit_module(void){', '  /*PROTECTED REGION ID(protect_exit_MAA) ENABLED START*/', '  fprintf(logFile, "end\\n");', '  /*PROTECTED REGION END*/', '}', ''].join('\n');
+    const sub = join(dir, 'old', 'MAA_mod');
+    mkdirSync(sub, { recursive: true });
+    writeFileSync(join(sub, 'module.c'), old);
+    const oldCtx = { cwd: sub, root: join(dir, 'old'), regions: new Map([['MAA_mod/module.c', findProtectedRegions(old)]]) };
+    const hint = "; the ContrACT Eclipse tool's `FILE* logFile` is gone: libmodule writes each module's CSV log; add a record to it with ContractLog() (docs/runtime-api.md, docs/migrating.md)";
+    for (const locale of ['C', 'C.UTF-8']) {
+      const gcc = (args: string[]) => spawnSync('gcc', ['-std=c11', '-c', 'module.c', '-o', '/dev/null', ...args], { cwd: sub, encoding: 'utf8', env: { ...process.env, LC_ALL: locale } }).stderr;
+      const json = parseGccJsonLine(gcc(['-fdiagnostics-format=json']).trim(), oldCtx)!;
+      const text = gcc(['-fno-diagnostics-show-caret']).split('\n').map((l) => parseGccTextLine(l, oldCtx)).filter((d) => d !== null);
+      for (const diags of [json, text]) {
+        const err = diags.find((d) => d.severity === 'error')!;
+        expect(err, locale).toMatchObject({ file: 'MAA_mod/module.c', line: 4, protectedRegion: { id: 'protect_exit_MAA' } });
+        expect(err.message, locale).toMatch(/^.logFile. undeclared \(first use in this function\); /);
+        expect(err.message.endsWith(hint), locale).toBe(true);
+      }
+    }
+    // any other undeclared name: no hint
+    expect(parseGccJsonLine(compile('json').trim(), ctx())!.some((d) => d.message.includes('ContractLog'))).toBe(false);
+  });
+
   test('make directory tracking resolves paths of sub-makes', () => {
     const router = new BuildOutputRouter({ startDir: '/work/src-gen/generated/architecture', root: '/work/src-gen', regions: new Map() });
     router.route("make[1]: Entering directory '/work/src-gen/generated/MAA_mod'", 'stdout');

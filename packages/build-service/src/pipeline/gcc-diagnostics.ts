@@ -4,6 +4,7 @@
  */
 import { posix } from 'node:path';
 import { regionAt, type ProtectedRegion } from './protected-regions.js';
+import { withMigrationHint } from './migration-hints.js';
 
 /** One gcc problem, located in the job's tree (see docs/build-service-api.md). */
 export interface GccDiagnostic {
@@ -90,12 +91,16 @@ export function severityOf(kind: unknown): GccDiagnostic['severity'] {
   return 'note';
 }
 
-/** Places a diagnostic in the tree: root-relative file (when inside it) and its protected region. */
+/**
+ * Places a diagnostic in the tree: root-relative file (when inside it) and its protected region;
+ * its message gets the hint of a problem of code carried over from the ContrACT Eclipse tool (migration-hints.ts).
+ */
 export function located(
-  base: Omit<GccDiagnostic, 'file' | 'protectedRegion'>,
+  found: Omit<GccDiagnostic, 'file' | 'protectedRegion'>,
   rawFile: string | null,
   ctx: DiagnosticContext,
 ): GccDiagnostic {
+  const base = { ...found, message: withMigrationHint(found.message) };
   const file = rawFile === null ? null : (relativeToRoot(rawFile, ctx) ?? rawFile);
   const regions = file ? ctx.regions.get(file) : undefined;
   const protectedRegion = regions && base.line !== null ? regionAt(regions, base.line) : null;
