@@ -433,19 +433,64 @@ static void on_fatal_signal(int sig, siginfo_t *si, void *context)
  * second thread while the first is handled ends the process at once when it is the same signal
  * (reset by then), else waits for the first to end the process (1 s at most). */
 static const int crash_signals[] = { SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT };
+#define N_CRASH_SIGNALS (sizeof crash_signals / sizeof crash_signals[0])
 static char crash_stack[64 * 1024]; /* the handler's stack: a stack overflow leaves none */
+
+/* Under AddressSanitizer (the runtime's ASan test builds) a crash signal whose handler the
+ * sanitizer installed before main (SIGSEGV, SIGBUS and SIGFPE by default) is the sanitizer's to
+ * report: its report (the faulting access, its stack with files and lines) is better than the
+ * crash report there. The runtime's handler then writes the log's records only and hands the
+ * signal back to the sanitizer's handler, which reports it and ends the process (exit status 1,
+ * ASan's exitcode). */
+#if defined(__SANITIZE_ADDRESS__)
+#define RT_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define RT_UNDER_ASAN 1
+#endif
+#endif
+static struct sigaction sanitizer_action[N_CRASH_SIGNALS];
+static int sanitizer_has[N_CRASH_SIGNALS];
+
+static int crash_signal_index(int sig)
+{
+    for (size_t i = 0; i < N_CRASH_SIGNALS; i++)
+        if (crash_signals[i] == sig) return (int)i;
+    return -1;
+}
+
+/* Keeps the sanitizer's handler of crash signal i, if it has one (never without ASan). */
+static void keep_sanitizer_handler(size_t i)
+{
+    sanitizer_has[i] = 0;
+#ifdef RT_UNDER_ASAN
+    /* sa_handler and sa_sigaction share their storage: SIG_DFL and SIG_IGN are neither's handler */
+    if (sigaction(crash_signals[i], NULL, &sanitizer_action[i]) == 0 && sanitizer_action[i].sa_handler != SIG_DFL &&
+        sanitizer_action[i].sa_handler != SIG_IGN)
+        sanitizer_has[i] = 1;
+#endif
+}
 
 static void on_crash_signal(int sig, siginfo_t *info, void *context)
 {
     int saved = errno;
+    int k = crash_signal_index(sig);
+    int to_sanitizer = k >= 0 && sanitizer_has[k];
     if (!__atomic_exchange_n(&log_dying, 1, __ATOMIC_SEQ_CST)) {
-        rt_crash_report_write(sig, info, context); /* where: first, the log may take up to 100 ms */
+        if (!to_sanitizer) rt_crash_report_write(sig, info, context); /* where: first, the log may take up to 100 ms */
         rt_log_at_signal(sig, 1);
     } else {
         struct timespec ts = { 1, 0 };
         nanosleep(&ts, NULL);
     }
     errno = saved;
+    if (to_sanitizer) {
+        sigaction(sig, &sanitizer_action[k], NULL);
+        /* a fault happens again as the handler returns, at the same instruction: the sanitizer's
+         * handler reports it with its own context; a signal sent is sent again */
+        if (!info || info->si_code <= 0) raise(sig);
+        return;
+    }
     signal(sig, SIG_DFL);
     raise(sig); /* delivered as the handler returns: the process ends by it */
 }
@@ -476,10 +521,13 @@ void rt_install_signal_cleanup(void)
     memset(&ca, 0, sizeof ca);
     ca.sa_sigaction = on_crash_signal;
     sigemptyset(&ca.sa_mask);
-    for (size_t i = 0; i < sizeof crash_signals / sizeof crash_signals[0]; i++) sigaddset(&ca.sa_mask, crash_signals[i]);
+    for (size_t i = 0; i < N_CRASH_SIGNALS; i++) sigaddset(&ca.sa_mask, crash_signals[i]);
     ca.sa_flags = SA_SIGINFO | SA_RESETHAND | (on_alt ? SA_ONSTACK : 0);
     rt_crash_report_prepare();
-    for (size_t i = 0; i < sizeof crash_signals / sizeof crash_signals[0]; i++) sigaction(crash_signals[i], &ca, NULL);
+    for (size_t i = 0; i < N_CRASH_SIGNALS; i++) {
+        keep_sanitizer_handler(i);
+        sigaction(crash_signals[i], &ca, NULL);
+    }
 }
 
 void ContractShutdown(void)

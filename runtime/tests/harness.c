@@ -94,6 +94,21 @@ int h_wait_exit(pid_t pid, int timeout_ms)
     return -1;
 }
 
+int h_asan_reports(int sig)
+{
+#if defined(__SANITIZE_ADDRESS__)
+    return sig == SIGSEGV || sig == SIGBUS || sig == SIGFPE;
+#else
+    (void)sig;
+    return 0;
+#endif
+}
+
+int h_crash_status(int sig)
+{
+    return h_asan_reports(sig) ? 1 : 128 + sig;
+}
+
 void h_teardown(void)
 {
     h_active = 0;

@@ -35,6 +35,12 @@ int h_wait_event(const char *from, int port, int timeout_ms, RequestMessage *msg
 int h_wait_ack(const char *from, int ackId, int mask, int timeout_ms, RequestMessage *msg);
 /* Did this process exit within timeout_ms? Returns exit status, 128+signal, or -1 if still running. */
 int h_wait_exit(pid_t pid, int timeout_ms);
+/* 1 when the tests are built with AddressSanitizer and it reports crash signal `sig` itself
+   (SIGSEGV, SIGBUS, SIGFPE: its defaults): the module's crash then ends with ASan's report and exit
+   status 1, not the crash report and the signal (core.c) */
+int h_asan_reports(int sig);
+/* How a module that crashes by `sig` ends, as h_wait_exit says it: 128 + sig, or 1 when ASan reports it */
+int h_crash_status(int sig);
 /* Whole file into a malloc'd string (NULL if missing). */
 char *h_read_file(const char *path);
 /* Path of the first file of h_log_dir whose name starts with `prefix` and ends with `suffix` (0: none). */
