@@ -9,7 +9,7 @@ import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, describe, expect, test } from 'vitest';
-import { atPidsLimit, findContainerCgroup, isOomEvent, namesContainer, parseProcCgroup, planContainerCgroup } from './docker-cgroup.js';
+import { atPidsLimit, findContainerCgroup, isOomEvent, namesContainer, parseProcCgroup, planContainerCgroup, shmemOfStats } from './docker-cgroup.js';
 import { terminateNamedOnHost } from './queue-term.js';
 
 const ID = '679a5f64faf5c7262d8e2534c61cb54143aff5392a16cec3168df7af66aa2338';
@@ -283,5 +283,18 @@ describe('atPidsLimit (the engine\'s stats, when the cgroup is not read here)', 
     expect(atPidsLimit(undefined, 24)).toBe(false);
     // an engine that gives no limit (0, or a huge "max") and none given: no hit
     expect(atPidsLimit({ current: 5, limit: 0 })).toBe(false);
+  });
+});
+
+describe('shmemOfStats (the engine\'s stats of a container)', () => {
+  test('shmem under cgroup v2, else the page cache (cgroup v1 stats have no shmem); null for anything else', () => {
+    expect(shmemOfStats({ memory_stats: { stats: { shmem: 1234, file: 99999 } } })).toBe(1234);
+    expect(shmemOfStats({ memory_stats: { stats: { total_cache: 5000, cache: 4000 } } })).toBe(5000);
+    expect(shmemOfStats({ memory_stats: { stats: { cache: 4000 } } })).toBe(4000);
+    expect(shmemOfStats({ memory_stats: { stats: { shmem: -1 } } })).toBeNull();
+    expect(shmemOfStats({ memory_stats: { stats: { shmem: '77' } } })).toBeNull();
+    expect(shmemOfStats({ memory_stats: { stats: { shmem: 2 ** 60 } } })).toBeNull();
+    expect(shmemOfStats({ memory_stats: {} })).toBeNull();
+    expect(shmemOfStats(null)).toBeNull();
   });
 });

@@ -21,7 +21,7 @@ import type { Readable } from 'node:stream';
 import type Docker from 'dockerode';
 import { readPidsLimitHits, readV1OomKills } from './cgroup.js';
 import { readV2OomKills } from './cgroup-v2.js';
-import { cgroupPids, readSmallFile } from './cgroup-procs.js';
+import { cgroupPids, readShmemBytes, readSmallFile } from './cgroup-procs.js';
 
 /** Where cgroup v1 controllers are mounted (`<root>/memory`, `<root>/pids`), as cgroup.ts has it. */
 export const CGROUP_V1_ROOT = '/sys/fs/cgroup';
@@ -167,6 +167,11 @@ export class ContainerCgroup {
     return this.plan.pids ? readPidsLimitHits(this.plan.pids.dir) : Promise.resolve(0);
   }
 
+  /** Bytes of the container's memory its tmpfs files held (memory.stat shmem), null when not read here. */
+  memoryFiles(): Promise<number | null> {
+    return this.plan.memory ? readShmemBytes(this.plan.memory.dir) : Promise.resolve(null);
+  }
+
   /** The host pids of the container's processes (its cgroup.procs), as this host sees them. */
   pids(): Promise<number[]> {
     const dir = this.plan.pids?.dir ?? this.plan.memory?.dir;
@@ -284,10 +289,11 @@ export function atPidsLimit(stats: PidsStats | undefined, limit?: number): boole
 
 /**
  * Asks the engine for the container's process count every ENGINE_PIDS_INTERVAL_MS (stats, one
- * shot); calls `onHit` at the first sample at its limit (atPidsLimit). For a container whose
- * cgroup is not read here (a remote engine): a program that hides its refused forks is still seen.
+ * shot); calls `onHit` at the first sample at its limit (atPidsLimit), `onStats` with each sample.
+ * For a container whose cgroup is not read here (a remote engine): a program that hides its
+ * refused forks is still seen.
  */
-export function followEnginePids(container: Docker.Container, limit: number | undefined, onHit: () => void): { stop(): void } {
+export function followEnginePids(container: Docker.Container, limit: number | undefined, onHit: () => void, onStats?: (stats: EngineMemoryStats) => void): { stop(): void } {
   let stopped = false;
   let busy = false;
   const timer = setInterval(() => {
@@ -295,6 +301,7 @@ export function followEnginePids(container: Docker.Container, limit: number | un
     busy = true;
     container.stats({ stream: false, 'one-shot': true })
       .then((s) => {
+        if (!stopped) onStats?.(s as EngineMemoryStats);
         if (!stopped && atPidsLimit(s?.pids_stats, limit)) {
           stopped = true;
           clearInterval(timer);
@@ -331,6 +338,14 @@ export interface LimitWatch {
   finalLook(): Promise<'memory' | 'processes' | null>;
   /** The container's host pids from its cgroup; null when the cgroup is not read here. */
   pids(): Promise<number[] | null>;
+  /**
+   * Bytes of the container's memory its tmpfs files held (the work dir, /tmp, /dev/shm: memory.stat
+   * `shmem`), from its cgroup, else from the engine's stats (a remote engine too): the more of a
+   * read now and the watch's last sample (read with its counters: at an OOM kill of the container's
+   * init the container ends and its tmpfs mounts are freed while the hit is being told); null when
+   * neither says.
+   */
+  memoryFiles(): Promise<number | null>;
   /** Resolves once the watch is in place (the cgroup found, or the event stream open, or neither). */
   readonly ready: Promise<void>;
 }
@@ -352,6 +367,11 @@ export function watchContainerLimits(opts: LimitWatchOptions): LimitWatch {
   let enginePids: { stop(): void } | null = null;
   let cgroup: ContainerCgroup | null = null;
   let fired = false;
+  /** The tmpfs files' bytes at the last sample (cgroup or engine stats), null before one. */
+  let filesSampled: number | null = null;
+  const sampleFiles = (bytes: number | null): void => {
+    if (bytes !== null && !fired) filesSampled = bytes;
+  };
   const fire = (kind: 'memory' | 'processes'): void => {
     if (fired || stopped) return;
     fired = true;
@@ -366,7 +386,10 @@ export function watchContainerLimits(opts: LimitWatchOptions): LimitWatch {
     const info = (await opts.container.inspect().catch(() => null)) as InspectedContainer | null;
     if (!info || stopped) return;
     /** The process limit from the engine's process count, when the cgroup's pids counter is not read here (started once). */
-    const followPidsByEngine = (): void => void (enginePids ??= followEnginePids(opts.container, info.HostConfig?.PidsLimit ?? undefined, () => fire('processes')));
+    const followPidsByEngine = (): void =>
+      void (enginePids ??= followEnginePids(opts.container, info.HostConfig?.PidsLimit ?? undefined, () => fire('processes'), (s) => {
+        if (!cgroup?.plan.memory) sampleFiles(shmemOfStats(s));
+      }));
     let reason = 'the limits are watched through the engine (limitWatch: engine)';
     if (opts.mode === 'auto') {
       const found = await findContainerCgroup(info);
@@ -377,7 +400,11 @@ export function watchContainerLimits(opts: LimitWatchOptions): LimitWatch {
         timer = setInterval(() => {
           if (busy) return;
           busy = true;
-          look(found.cgroup).then((h) => h && fire(h), () => {}).finally(() => (busy = false));
+          // the files' sample only when no hit is seen: at the hit the container may be ending, its tmpfs freed
+          look(found.cgroup)
+            .then((h) => (h ? fire(h) : found.cgroup.memoryFiles().then(sampleFiles)))
+            .catch(() => {})
+            .finally(() => (busy = false));
         }, CGROUP_WATCH_INTERVAL_MS);
         if (!found.cgroup.plan.pids) followPidsByEngine();
         if (found.cgroup.plan.memory) return;
@@ -406,5 +433,36 @@ export function watchContainerLimits(opts: LimitWatchOptions): LimitWatch {
     },
     finalLook: async () => (cgroup ? look(cgroup).catch(() => null) : null),
     pids: async () => (cgroup ? cgroup.pids() : null),
+    memoryFiles: async () => {
+      const now = await (cgroup?.plan.memory ? cgroup.memoryFiles() : engineMemoryFiles(opts.container)).catch(() => null);
+      return now === null ? filesSampled : filesSampled === null ? now : Math.max(now, filesSampled);
+    },
   };
+}
+
+/** What the engine's stats say of a container's memory (`memory_stats.stats`: cgroup v1's or v2's memory.stat). */
+export interface EngineMemoryStats {
+  memory_stats?: { stats?: Record<string, unknown> };
+}
+
+/**
+ * The bytes of tmpfs and shared memory a container's stats count: `shmem` (cgroup v2), else, as the
+ * engine gives no shmem under cgroup v1, its page cache (`total_cache`, `cache`): at an OOM kill, the
+ * page cache the kernel could not reclaim is that of the tmpfs files; null when they do not say or
+ * say no whole number.
+ */
+export function shmemOfStats(stats: EngineMemoryStats | null | undefined): number | null {
+  const s = stats?.memory_stats?.stats;
+  if (!s || typeof s !== 'object') return null;
+  for (const key of ['total_shmem', 'shmem', 'total_cache', 'cache']) {
+    const v = s[key];
+    if (typeof v === 'number' && Number.isSafeInteger(v) && v >= 0) return v;
+  }
+  return null;
+}
+
+/** The container's shmem bytes from one stats call of the engine (2-8 ms), null when it cannot say. */
+async function engineMemoryFiles(container: Docker.Container): Promise<number | null> {
+  const stats = (await container.stats({ stream: false, 'one-shot': true }).catch(() => null)) as EngineMemoryStats | null;
+  return shmemOfStats(stats);
 }

@@ -49,6 +49,28 @@ int main(void) {
 }
 `;
 
+/** A child writes a file in the job's /tmp (a tmpfs), 1 MiB per 20 ms, until the kernel kills it; the program goes on for 20 s (a run's logs filling its tmpfs). */
+const childFillsTmpfs = `${HEAD}
+int main(void) {
+  pid_t p = fork();
+  if (p == 0) {
+    static char block[1 << 20];
+    memset(block, 1, sizeof block);
+    FILE *f = fopen("/tmp/fill", "w");
+    if (!f) _exit(3);
+    for (;;) {
+      if (fwrite(block, 1, sizeof block, f) != sizeof block || fflush(f) != 0) _exit(4);
+      usleep(20000);
+    }
+  }
+  int st = 0;
+  waitpid(p, &st, 0);
+  printf("child ended, signal %d\\n", WIFSIGNALED(st) ? WTERMSIG(st) : 0); fflush(stdout);
+  sleep(20);
+  return 0;
+}
+`;
+
 const env = dockerUp();
 const servers: BuildServer[] = [];
 let cacheDir: string;
@@ -107,8 +129,26 @@ if (env.available) {
       expect(job.status).toBe('failed');
       expect(job.result.step).toBe('run');
       expect(job.result.message).toBe('killed: memory limit 96 MiB');
-      expect(job.result.limitHit).toEqual({ name: 'memory', value: 96 * 1024 * 1024, unit: 'bytes', mechanism: 'docker' });
+      expect(job.result.limitHit).toMatchObject({ name: 'memory', value: 96 * 1024 * 1024, unit: 'bytes', mechanism: 'docker' });
       expect(job.result.durations_ms.run).toBeLessThan(10_000);
+    });
+
+    /** A job of childFillsTmpfs at `memoryMiB: 64` (its /tmp larger): the message says how much of the limit its tmpfs files held, as bwrap's does. */
+    const stoppedByTmpfsFiles = async (url: string): Promise<void> => {
+      const job = await run(url, childFillsTmpfs, { memoryMiB: 64, tmpMiB: 256 });
+      expect(job.status).toBe('failed');
+      expect(job.result.message).toMatch(/^killed: memory limit 64 MiB: [\d.]+ MiB of it were the job's files in its tmpfs mounts \(the work dir, \/tmp, \/dev\/shm\), which no kill frees/);
+      expect(job.result.limitHit).toMatchObject({ name: 'memory', value: 64 * 1024 * 1024, unit: 'bytes', mechanism: 'docker' });
+      expect(job.result.limitHit.memoryFilesBytes).toBeGreaterThan(40 * 1024 * 1024);
+      expect(job.result.durations_ms.run).toBeLessThan(10_000);
+    };
+
+    test('a child filling the job\'s tmpfs /tmp up to the memory limit: the message says what its files held (from the container\'s cgroup)', async () => {
+      await stoppedByTmpfsFiles(cgroupUrl);
+    });
+
+    test("without the cgroup (limitWatch: 'engine', as a remote engine): what the tmpfs files held, from the engine's stats", async () => {
+      await stoppedByTmpfsFiles(engineUrl);
     });
 
     test("without the cgroup (limitWatch: 'engine', as a remote engine): forks refused and hidden are seen from the engine's process count, at the hit, the forking program named from the engine's process list", async () => {
@@ -119,7 +159,7 @@ if (env.available) {
       const job = await run(engineUrl, childOutOfMemory, { memoryMiB: 96 });
       expect(job.status).toBe('failed');
       expect(job.result.message).toBe('killed: memory limit 96 MiB');
-      expect(job.result.limitHit).toEqual({ name: 'memory', value: 96 * 1024 * 1024, unit: 'bytes', mechanism: 'docker' });
+      expect(job.result.limitHit).toMatchObject({ name: 'memory', value: 96 * 1024 * 1024, unit: 'bytes', mechanism: 'docker' });
       expect(job.result.durations_ms.run).toBeLessThan(10_000);
     });
   });

@@ -362,13 +362,18 @@ export class DockerSandbox implements Sandbox {
         docker: this.docker,
         container,
         mode: this.limitWatch,
-        onHit: (kind) => (kind === 'memory' ? hitLimit(memoryHit) : hitProcessLimit()),
+        onHit: (kind) => (kind === 'memory' ? void memoryHitNow().then(hitLimit) : hitProcessLimit()),
         onFallback: (reason) => {
           if (this.limitWatchNoted || this.limitWatch === 'engine') return;
           this.limitWatchNoted = true;
           this.log(`docker: the containers' cgroups cannot be read here (${reason}): a memory limit hit is taken from the engine's oom events, a process limit hit from the engine's process count and the program's messages (docs/sandbox.md "Memory and process limits in Docker")`);
         },
       });
+      /** The memory limit, with what of it the job's tmpfs files held, read before the kill (as bwrap's: host-process.ts). */
+      const memoryHitNow = async (): Promise<LimitHit> => {
+        const files = await watch.memoryFiles().catch(() => null);
+        return files !== null ? { ...memoryHit, memoryFilesBytes: files } : memoryHit;
+      };
       /** The process limit, with the module whose code forks, named while its processes are there (forking-module.ts). */
       let namingForks = false; // one look at the processes (a fork loop's error lines come by thousands)
       const hitProcessLimit = (): void => {
@@ -402,14 +407,14 @@ export class DockerSandbox implements Sandbox {
         // the last counters, when the cgroup is still there (a kill just before the exit)
         if (!limitHit && !killing) {
           const last = await watch.finalLook();
-          if (last) limitHit = last === 'memory' ? memoryHit : processHit;
+          if (last) limitHit = last === 'memory' ? await memoryHitNow() : processHit;
         }
         watch.stop();
         // the attach stream delivers the last bytes after the container ended: drain it first (a
         // shell's or make's "Killed" line, read below, is among them)
         await Promise.race([streamEnded, new Promise((r) => setTimeout(r, 1000))]);
         if (!limitHit && (await engineSaysOomKilled(() => container.inspect(), !killing && looksKilled(waited.StatusCode, sawKilled)))) {
-          limitHit = memoryHit;
+          limitHit = await memoryHitNow();
         }
         // a job that was refused a write and gave up is reported too; not one the service stopped
         // itself (run time limit, cancel): its reason is known, and the look into the volume (an exec
