@@ -68,6 +68,12 @@ typedef struct {
     int failed;           /* died on its own with a signal or a non-zero status (also while the run stops) */
     int signalled;        /* the signal the launcher sent it at the stop (SIGTERM, then SIGKILL), 0 when none */
     int killed;           /* failed by a SIGKILL the launcher did not send (the kernel's OOM killer, RLIMIT_RTTIME, another process) */
+    /* its crash report (runtime crash_report.c), read from its stderr: saved as its crash file in
+     * the run's logs once it died by a signal the launcher did not send (save_crash) */
+    char *crash;          /* the block's lines, allocated at its head; NULL when none */
+    size_t crash_len;
+    int crash_state;      /* 0 none, 1 a block naming it is open, 2 a whole block read, 3 saved */
+    int crashed;          /* died by a signal the launcher did not send */
 } Child;
 
 static Child children[MAX_MODULES];
@@ -316,12 +322,82 @@ static void emit_line(const Child *c, int k, const char *text, size_t len)
     (void)w;
 }
 
+/* ------------------------------------------------------------------ crash file */
+
+/* A crashed module's crash report, saved as <CONTRACT_LOG_DIR>/<NAME>.crash (docs/runtime-api.md
+ * "Crash file"): the first whole block of its stderr that names it, its lines as they are, each
+ * CRASH_LINE_MAX characters at most, CRASH_LINES_MAX lines at most (head, build-id, 48 frames,
+ * end). Readers (contract trace) read it in the exact format only. */
+#define CRASH_MARK "==contract-crash== "
+#define CRASH_LINE_MAX 160
+#define CRASH_LINES_MAX 51
+#define CRASH_BLOCK_MAX (CRASH_LINES_MAX * (CRASH_LINE_MAX + 1))
+
+/* <CONTRACT_LOG_DIR>/<NAME>.crash into `path`; 0 when there is no log folder. */
+static int crash_path(const Child *c, char *path, size_t size)
+{
+    const char *dir = getenv("CONTRACT_LOG_DIR");
+    if (!dir || !*dir) return 0;
+    int n = snprintf(path, size, "%s/%s.crash", dir, c->name);
+    return n > 0 && (size_t)n < size;
+}
+
+/* The crash file of `c`, once it crashed and its whole block was read (either may come first). */
+static void save_crash(Child *c)
+{
+    char path[PATH_MAX];
+    if (c->crash_state != 2 || !c->crashed || !crash_path(c, path, sizeof path)) return;
+    c->crash_state = 3;
+    int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0) { say("module %s: its crash file %s: %s", c->name, path, strerror(errno)); return; }
+    for (size_t w = 0; w < c->crash_len;) {
+        ssize_t k = write(fd, c->crash + w, c->crash_len - w);
+        if (k <= 0) { if (k < 0 && errno == EINTR) continue; say("module %s: its crash file %s: %s", c->name, path, strerror(errno)); break; }
+        w += (size_t)k;
+    }
+    close(fd);
+}
+
+/* A line of `c`'s stderr: kept while it is a line of a crash report block that names `c`. */
+static void note_crash_line(Child *c, int k, const char *text, size_t len)
+{
+    const size_t m = sizeof CRASH_MARK - 1;
+    if (k != 1 || c->crash_state >= 2) return;
+    int marked = len >= m && len <= CRASH_LINE_MAX && memcmp(text, CRASH_MARK, m) == 0 && !memchr(text, '\0', len);
+    char head[CONTRACT_NAME_MAX + 32];
+    int hl = snprintf(head, sizeof head, CRASH_MARK "module %s ", c->name);
+    if (marked && hl > 0 && len > (size_t)hl && memcmp(text, head, (size_t)hl) == 0) { /* a head: the block starts (anew) */
+        if (!c->crash && !(c->crash = malloc(CRASH_BLOCK_MAX))) return;
+        c->crash_len = 0;
+        c->crash_state = 1;
+    } else if (c->crash_state != 1) {
+        return;
+    } else if (!marked || c->crash_len + len + 1 > CRASH_BLOCK_MAX) { /* not the runtime's block */
+        c->crash_state = 0;
+        return;
+    }
+    memcpy(c->crash + c->crash_len, text, len);
+    c->crash_len += len;
+    c->crash[c->crash_len++] = '\n';
+    if (len > m + 4 && memcmp(text + m, "end ", 4) == 0) {
+        c->crash_state = 2;
+        save_crash(c);
+    }
+}
+
+/* A crash file left in the log folder by an earlier run of a module of this one: not this run's. */
+static void remove_old_crash_file(const Child *c)
+{
+    char path[PATH_MAX];
+    if (crash_path(c, path, sizeof path)) unlink(path);
+}
+
 /* Output `k` of `c` at its end: its unfinished line forwarded, its pipe closed. */
 static void close_output(Child *c, int k)
 {
     Output *o = &c->out[k];
     if (o->fd < 0) return;
-    if (o->len) { emit_line(c, k, o->line, o->len); o->len = 0; }
+    if (o->len) { note_crash_line(c, k, o->line, o->len); emit_line(c, k, o->line, o->len); o->len = 0; }
     close(o->fd);
     o->fd = -1;
 }
@@ -337,6 +413,7 @@ static void pump(Child *c, int k)
     if (n <= 0) { close_output(c, k); return; }
     for (ssize_t i = 0; i < n; i++) {
         if (buf[i] == '\n' || o->len == LINE_MAX_LEN) {
+            note_crash_line(c, k, o->line, o->len);
             emit_line(c, k, o->line, o->len);
             o->len = 0;
             if (buf[i] == '\n') continue;
@@ -473,6 +550,7 @@ static void reap(void)
                 int ours = c->signalled != 0;
                 if (!ours) c->failed = 1;
                 if (!ours && sig == SIGKILL) c->killed = 1;
+                if (!ours) { c->crashed = 1; save_crash(c); }
                 char note[160];
                 say("module %s (pid %ld) %s by signal %d (%s)%s%s", c->name, (long)pid, ours ? "terminated" : "died",
                     sig, strsignal(sig), rttime_note(sig, &ru, note, sizeof note), ours ? "" : when);
@@ -920,6 +998,7 @@ int main(int argc, char *argv[])
         c->exe = argv[k];
         c->out[0].fd = c->out[1].fd = -1;
         derive_name(c);
+        remove_old_crash_file(c);
         if (spawn(c, &oldmask) != 0) { n_children--; stop_all(sfd); clean_run_dir(run_dir); return 2; }
     }
     /* A run may start at SCHED_FIFO (the build service's real-time mode, docs/sandbox.md "Real-time

@@ -3,6 +3,7 @@
  * to function, file and line (addr2line on the module's executable, built with -g):
  *
  *   ==contract-crash== module EST signal 11 SIGSEGV addr 0x0
+ *   ==contract-crash== build-id 87975f83592c177c758e701ac13508592189f578
  *   ==contract-crash== frame 0 exe 0x1a2b
  *   ==contract-crash== frame 1 exe 0x1c40
  *   ==contract-crash== frame 2 libc.so.6 0x271ca
@@ -13,7 +14,11 @@
  * addresses, innermost first, at most CRASH_FRAMES. Each is an offset in the object that holds
  * it: `exe` (the executable, the module's code and the runtime linked in: its offset from the
  * executable's load address, what addr2line takes for a PIE and a non-PIE alike), a shared
- * library's file name, or `?` and the address itself (an object loaded after start-up).
+ * library's file name, or `?` and the address itself (an object loaded after start-up). The
+ * build-id line (only when the executable has one: GNU ld's --build-id, gcc's default on Debian)
+ * is the executable's NT_GNU_BUILD_ID note, in hex: a reader maps the frames only in an executable
+ * of that build-id (the crash file the launcher saves in the run's logs: a rebuilt executable is
+ * not the one that crashed).
  *
  * Async-signal-safe: the objects are listed at start-up (rt_crash_report_prepare:
  * dl_iterate_phdr, into static tables, locked with the rest by mlockall), and backtrace() is called
@@ -43,6 +48,35 @@ typedef struct {
 
 static CrashObject objects[CRASH_OBJECTS];
 static int n_objects;
+#define CRASH_BUILD_ID_MAX 64                /* bytes of a build-id kept (GNU ld's: 20) */
+static char build_id_hex[2 * CRASH_BUILD_ID_MAX + 1]; /* the executable's, "" when it has none */
+
+/* The executable's NT_GNU_BUILD_ID note, as hex into build_id_hex (its PT_NOTE segments, loaded). */
+static void find_build_id(const struct dl_phdr_info *info)
+{
+    build_id_hex[0] = '\0';
+    for (int i = 0; i < info->dlpi_phnum; i++) {
+        if (info->dlpi_phdr[i].p_type != PT_NOTE) continue;
+        const unsigned char *p = (const unsigned char *)(info->dlpi_addr + info->dlpi_phdr[i].p_vaddr);
+        const unsigned char *end = p + info->dlpi_phdr[i].p_memsz;
+        while (p + sizeof(ElfW(Nhdr)) <= end) {
+            const ElfW(Nhdr) *n = (const ElfW(Nhdr) *)(const void *)p;
+            size_t name = (n->n_namesz + 3u) & ~(size_t)3u, desc = (n->n_descsz + 3u) & ~(size_t)3u;
+            const unsigned char *d = p + sizeof *n + name;
+            if (d + desc > end) break;
+            if (n->n_type == NT_GNU_BUILD_ID && n->n_namesz == 4 && memcmp(p + sizeof *n, "GNU", 4) == 0 &&
+                n->n_descsz > 0 && n->n_descsz <= CRASH_BUILD_ID_MAX) {
+                for (size_t k = 0; k < n->n_descsz; k++) {
+                    build_id_hex[2 * k] = "0123456789abcdef"[d[k] >> 4];
+                    build_id_hex[2 * k + 1] = "0123456789abcdef"[d[k] & 15];
+                }
+                build_id_hex[2 * n->n_descsz] = '\0';
+                return;
+            }
+            p = d + desc;
+        }
+    }
+}
 
 const char *rt_crash_signal_name(int sig)
 {
@@ -64,6 +98,7 @@ static int list_object(struct dl_phdr_info *info, size_t size, void *data)
     const char *path = info->dlpi_name;
     if (n_objects == 0) { /* the first one is the executable */
         snprintf(o->name, sizeof o->name, "exe");
+        find_build_id(info);
     } else {
         if (!path || !path[0]) return 0; /* the vDSO: no file */
         const char *slash = strrchr(path, '/');
@@ -178,6 +213,11 @@ void rt_crash_report_write(int sig, const siginfo_t *info, const void *context)
      * (abort(), kill) holds its sender's pid there */
     p = put_hex(p, info && info->si_code > 0 ? (uintptr_t)info->si_addr : 0);
     p = put(p, "\n");
+    if (build_id_hex[0]) {
+        p = put(p, RT_CRASH_MARK " build-id ");
+        p = put(p, build_id_hex);
+        p = put(p, "\n");
+    }
     int told = 0;
     if (pc) p = put_frame(p, told++, pc);
     for (int i = pc ? from : 0; i < n && told < CRASH_FRAMES; i++) p = put_frame(p, told++, (uintptr_t)frames[i]);

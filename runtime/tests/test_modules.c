@@ -1316,6 +1316,7 @@ static const char *function_at(const char *off)
    still dies by its signal. */
 void test_crash_report(void)
 {
+    setenv("TEST_BIN_DIR", h_bin_dir, 1);
     static const struct { const char *how; int sig; const char *name; const char *fn; int first; } cases[] = {
         { "segv", SIGSEGV, "SIGSEGV", "null_store", 1 }, { "fpe", SIGFPE, "SIGFPE", "divide_by_zero", 1 },
         { "stack", SIGSEGV, "SIGSEGV", "deep", 1 }, { "abort", SIGABRT, "SIGABRT", "exec_state", 0 },
@@ -1343,6 +1344,13 @@ void test_crash_report(void)
         const char *at = strstr(text, head);
         CHECK_MSG(at != NULL, "%s: no crash report head '%s' in: %s", cases[c].how, head, text);
         CHECK_MSG(!at || !strstr(at + 1, "==contract-crash== module "), "%s: two crash reports", cases[c].how);
+        /* the line after the head: the executable's build-id, as readelf says it */
+        char want_id[200] = "", id_line[240];
+        FILE *re = popen("readelf -n \"$TEST_BIN_DIR/P\" 2>/dev/null | sed -n 's/^ *Build ID: *//p'", "r");
+        if (re) { if (!fgets(want_id, sizeof want_id, re)) want_id[0] = '\0'; pclose(re); }
+        want_id[strcspn(want_id, "\n")] = '\0';
+        snprintf(id_line, sizeof id_line, "\n==contract-crash== build-id %s\n==contract-crash== frame 0 ", want_id);
+        CHECK_MSG(want_id[0] && at && strstr(at, id_line) == strchr(at, '\n'), "%s: no build-id line '%s' after the head: %s", cases[c].how, want_id, at ? at : text);
         int frames = 0, found = 0, told = -1;
         for (const char *line = at; line && *line; line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL) {
             int i;

@@ -96,6 +96,12 @@ void test_launcher_crash_cleanup(void)
     snprintf(exe_c1, sizeof exe_c1, "%s/C1", h_bin_dir);
     snprintf(exe_c2, sizeof exe_c2, "%s/C2", h_bin_dir);
     snprintf(out, sizeof out, "%s/launch.out", h_work_dir);
+    /* a crash file of an earlier run in the log folder: not this run's, removed at the launch */
+    char old_crash[1200];
+    snprintf(old_crash, sizeof old_crash, "%s/P.crash", h_log_dir);
+    mkdir(h_log_dir, 0755);
+    FILE *oc = fopen(old_crash, "w");
+    if (oc) { fputs("==contract-crash== module P signal 11 SIGSEGV addr 0x0\n", oc); fclose(oc); }
     setenv("TMOD_CRASH_NAME", "C2", 1);
     char *argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, exe_p, exe_c1, exe_c2, NULL };
     pid_t launcher = start_launcher(argv, out);
@@ -121,6 +127,19 @@ void test_launcher_crash_cleanup(void)
     char *text = h_read_file(out);
     CHECK(text && strstr(text, "module C2 (pid") && strstr(text, "died by signal 6"));
     CHECK(text && strstr(text, "FAILED: module C2 crashed"));
+    /* its crash report, saved in the run's logs as C2.crash (the block as it wrote it); none for the others */
+    char crash_file[1200];
+    snprintf(crash_file, sizeof crash_file, "%s/C2.crash", h_log_dir);
+    char *crash = h_read_file(crash_file);
+    CHECK_MSG(crash && strncmp(crash, "==contract-crash== module C2 signal 6 SIGABRT addr 0x0\n==contract-crash== build-id ", 81) == 0,
+              "C2.crash: %s", crash ? crash : "(none)");
+    size_t crash_len = crash ? strlen(crash) : 0;
+    CHECK(crash_len > 8 && strcmp(crash + crash_len - 8, " frames\n") == 0 && strstr(crash, "\n==contract-crash== end "));
+    CHECK(crash && !strstr(crash, "[C2]"));
+    free(crash);
+    CHECK_MSG(access(old_crash, F_OK) != 0, "the earlier run's P.crash is still there");
+    snprintf(crash_file, sizeof crash_file, "%s/C1.crash", h_log_dir);
+    CHECK(access(crash_file, F_OK) != 0);
     CHECK(text && strstr(text, "module P (pid") && strstr(text, "exited with status 0"));
     /* the stop line says what stopped the run: make kill (contract-launch --kill) */
     CHECK_MSG(text && strstr(text, "contract-launch: stopping: make kill (contract-launch --kill, pid "), "launcher output: %s", text ? text : "(none)");

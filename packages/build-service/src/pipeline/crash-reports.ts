@@ -4,6 +4,7 @@
  * to function, file and line by addr2line on the module's executable (built with -g) after the run.
  *
  *   ==contract-crash== module EST signal 11 SIGSEGV addr 0x0
+ *   ==contract-crash== build-id 87975f83592c177c758e701ac13508592189f578
  *   ==contract-crash== frame 0 exe 0x40d8
  *   ==contract-crash== frame 1 libc.so.6 0x2724a
  *   ==contract-crash== end 2 frames
@@ -29,6 +30,8 @@ export const MAX_ADDR2LINE_CHARS = 256 * 1024;
 const HEAD = /^==contract-crash== module ([A-Za-z_]\w{0,63}) signal (\d{1,2}) (SIG[A-Z]{2,6}|\?) addr 0x([0-9a-f]{1,16})$/;
 const FRAME = /^==contract-crash== frame (\d{1,2}) (exe|\?|[A-Za-z0-9_.+-]{1,47}) 0x([0-9a-f]{1,16})$/;
 const END = /^==contract-crash== end (\d{1,2}) frames$/;
+/** The executable's build-id (GNU ld's NT_GNU_BUILD_ID, hex), right after the head when it has one. */
+const BUILD_ID = /^==contract-crash== build-id ((?:[0-9a-f]{2}){1,64})$/;
 /** The longest line of a block (a longer one is not the runtime's). */
 const MAX_LINE = 160;
 
@@ -45,6 +48,8 @@ export interface CrashReport {
   signalName: string;
   /** si_addr, hex digits. */
   address: string;
+  /** The crashed executable's build-id (hex digits), when it has one. */
+  buildId?: string;
   frames: CrashFrame[];
 }
 
@@ -72,6 +77,11 @@ export class CrashReports {
     }
     const report = this.open.get(source);
     if (!report) return;
+    const id = report.frames.length === 0 && report.buildId === undefined ? BUILD_ID.exec(text) : null;
+    if (id) {
+      report.buildId = id[1]!;
+      return;
+    }
     const frame = FRAME.exec(text);
     if (frame) {
       if (Number(frame[1]) !== report.frames.length || report.frames.length >= MAX_FRAMES) this.open.delete(source);
