@@ -10,7 +10,8 @@ import { resolve } from 'node:path';
 import { STORY_FOLLOWED, StoryTeller, TWIN_LOGS_WHY, isUnknown, moduleNamedByLog, ownString, twinLogs, type KnownRecord, type RecordCounts, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
-import { safeName } from '../terminal-text.js';
+import { escapeControls, safeName } from '../terminal-text.js';
+import { readCrashFiles } from '@contract-studio/build-service/crash-files';
 import { jsonLine } from '../trace-files.js';
 import { closeLogs, jsonLinesOf, LINE_CHARS_HELD, openLogFolder, streamTrace, windowFor, type OpenLog } from '../trace-stream.js';
 import { traceFileBatches } from '../trace-file-stream.js';
@@ -50,6 +51,7 @@ export const traceCommand: Command = {
         }
         try {
             const { late, problems, counts } = format === 'json' ? await printJson(logs, io) : await printStory(logs, io);
+            if (format === 'text') await printCrashSites(dir, io, problems);
             for (const p of problems) io.err(`contract trace: warning: ${p}\n`);
             if (late) io.err(`contract trace: warning: ${late} record(s) were more than ${windowFor(logs.length)} lines (fewer when lines are longer than ${LINE_CHARS_HELD} characters) from their time's place in their log: told later than their time\n`);
             if (counts?.records === 0) {
@@ -139,6 +141,16 @@ async function printStory(logs: readonly OpenLog[], io: CliIO): Promise<Printed>
     }
     io.out(story.end());
     return { late: stream.outOfOrder(), problems: stream.problems(), counts: story.counts };
+}
+
+/**
+ * Where the run's crashed modules crashed, from the logs folder's crash files (MODULE.crash, saved
+ * by contract-launch: docs/runtime-api.md "Crash file"), after the story; nothing when none.
+ */
+async function printCrashSites(dir: string, io: CliIO, problems: string[]): Promise<void> {
+    const sites = await readCrashFiles(dir, problems);
+    if (!sites.length) return;
+    io.out(`\ncrash sites (the logs' crash files):\n${sites.flatMap((s) => s.lines).map((l) => `${escapeControls(l)}\n`).join('')}`);
 }
 
 /** Prints `piece` (when any) once the reader took the last; false when the reader went away (`| head`: its choice). */
