@@ -72,7 +72,7 @@ typedef struct {
      * the run's logs once it died by a signal the launcher did not send (save_crash) */
     char *crash;          /* the block's lines, allocated at its head; NULL when none */
     size_t crash_len;
-    int crash_state;      /* 0 none, 1 a block naming it is open, 2 a whole block read, 3 saved */
+    int crash_state;      /* 0 none, 1 a block naming it is open, 2 a whole block read (a later head starts anew), 3 saved */
     int crashed;          /* died by a signal the launcher did not send */
 } Child;
 
@@ -325,7 +325,9 @@ static void emit_line(const Child *c, int k, const char *text, size_t len)
 /* ------------------------------------------------------------------ crash file */
 
 /* A crashed module's crash report, saved as <CONTRACT_LOG_DIR>/<NAME>.crash (docs/runtime-api.md
- * "Crash file"): the first whole block of its stderr that names it, its lines as they are, each
+ * "Crash file"): the last whole block of its stderr that names it (the crash handler writes its
+ * block just before the process dies: a block the module's code printed before is not kept), saved
+ * once its stderr is read to its end, its lines as they are, each
  * CRASH_LINE_MAX characters at most, CRASH_LINES_MAX lines at most (head, build-id, 48 frames,
  * end). Readers (contract trace) read it in the exact format only. */
 #define CRASH_MARK "==contract-crash== "
@@ -342,11 +344,11 @@ static int crash_path(const Child *c, char *path, size_t size)
     return n > 0 && (size_t)n < size;
 }
 
-/* The crash file of `c`, once it crashed and its whole block was read (either may come first). */
+/* The crash file of `c`, once it crashed and its stderr was read to its end (either may come first). */
 static void save_crash(Child *c)
 {
     char path[PATH_MAX];
-    if (c->crash_state != 2 || !c->crashed || !crash_path(c, path, sizeof path)) return;
+    if (c->crash_state != 2 || !c->crashed || c->out[1].fd >= 0 || !crash_path(c, path, sizeof path)) return;
     c->crash_state = 3;
     int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);
     if (fd < 0) { say("module %s: its crash file %s: %s", c->name, path, strerror(errno)); return; }
@@ -362,7 +364,7 @@ static void save_crash(Child *c)
 static void note_crash_line(Child *c, int k, const char *text, size_t len)
 {
     const size_t m = sizeof CRASH_MARK - 1;
-    if (k != 1 || c->crash_state >= 2) return;
+    if (k != 1 || c->crash_state == 3) return;
     int marked = len >= m && len <= CRASH_LINE_MAX && memcmp(text, CRASH_MARK, m) == 0 && !memchr(text, '\0', len);
     char head[CONTRACT_NAME_MAX + 32];
     int hl = snprintf(head, sizeof head, CRASH_MARK "module %s ", c->name);
@@ -370,7 +372,7 @@ static void note_crash_line(Child *c, int k, const char *text, size_t len)
         if (!c->crash && !(c->crash = malloc(CRASH_BLOCK_MAX))) return;
         c->crash_len = 0;
         c->crash_state = 1;
-    } else if (c->crash_state != 1) {
+    } else if (c->crash_state != 1) { /* outside a block, or after a whole one */
         return;
     } else if (!marked || c->crash_len + len + 1 > CRASH_BLOCK_MAX) { /* not the runtime's block */
         c->crash_state = 0;
@@ -379,10 +381,7 @@ static void note_crash_line(Child *c, int k, const char *text, size_t len)
     memcpy(c->crash + c->crash_len, text, len);
     c->crash_len += len;
     c->crash[c->crash_len++] = '\n';
-    if (len > m + 4 && memcmp(text + m, "end ", 4) == 0) {
-        c->crash_state = 2;
-        save_crash(c);
-    }
+    if (len > m + 4 && memcmp(text + m, "end ", 4) == 0) c->crash_state = 2;
 }
 
 /* A crash file left in the log folder by an earlier run of a module of this one: not this run's. */
@@ -400,6 +399,7 @@ static void close_output(Child *c, int k)
     if (o->len) { note_crash_line(c, k, o->line, o->len); emit_line(c, k, o->line, o->len); o->len = 0; }
     close(o->fd);
     o->fd = -1;
+    if (k == 1) save_crash(c);
 }
 
 /* Reads what output `k` of `c` holds and forwards its whole lines (a line longer than

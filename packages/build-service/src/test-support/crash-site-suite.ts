@@ -13,6 +13,13 @@ import { getJob, postJob, readEvents } from './client.js';
 import { MAA_MODULE, tutorialFiles, withRegion } from './tutorial.js';
 
 export function crashSiteSuite(sandbox: SandboxName, served: TestBuildServer): void {
+  /** The launcher saved the runtime's report in the run's logs (MAA.crash, runtime-api.md "Crash file"), collected with them. */
+  async function expectSavedReport(job: Record<string, any>): Promise<void> {
+    expect(job.artifacts.files.map((f: { name: string }) => f.name)).toContain('MAA.crash');
+    const saved = await (await fetch(`${served.url}/api/jobs/${job.id}/artifacts/MAA.crash`)).text();
+    expect(saved).toMatch(/^==contract-crash== module MAA signal 11 SIGSEGV addr 0x0\n==contract-crash== build-id [0-9a-f]{40}\n==contract-crash== frame 0 exe 0x[0-9a-f]+\n(?:==contract-crash== frame \d+ [\w.+-]+ 0x[0-9a-f]+\n){1,47}==contract-crash== end \d+ frames\n$/);
+  }
+
   async function runJob(files: Record<string, string>): Promise<{ job: Record<string, any>; events: JobEvent[] }> {
     const r = await postJob(served.url, { sandbox, action: 'run', duration: 2, project: { files } });
     expect(r.status, JSON.stringify(r.json)).toBe(201);
@@ -38,6 +45,7 @@ export function crashSiteSuite(sandbox: SandboxName, served: TestBuildServer): v
       // the runtime's frames are named as the runtime's files wherever it was built (the service's
       // cache for bwrap, the image's /opt/contract/runtime for docker)
       expect(service).toContainEqual(expect.stringMatching(/^MAA crash frame #\d+ main at runtime\/src\/module_main\.c:\d+$/));
+      await expectSavedReport(job);
     });
 
     test('forged crash reports: only addr2line on the module\'s own executable, bounded', async () => {
@@ -73,6 +81,8 @@ export function crashSiteSuite(sandbox: SandboxName, served: TestBuildServer): v
       // one addr2line, on MAA's executable, of at most 48 frames
       expect(service.filter((l) => /^time: crash site of \w+ \(addr2line\)/.test(l))).toEqual([expect.stringMatching(/^time: crash site of MAA /)]);
       expect(service.filter((l) => l.startsWith('MAA crash frame ')).length).toBeLessThanOrEqual(48 * 4);
+      // the crash file holds the real report, the last block MAA wrote, not a forged one before it
+      await expectSavedReport(job);
     });
   });
 }
