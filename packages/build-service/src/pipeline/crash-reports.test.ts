@@ -32,9 +32,12 @@ describe('CrashReports: the runtime crash report read from a module\'s output', 
     expect(read([`${head('EST')}${' '.repeat(200)}`, frame(0, 'exe', '1'), end(1)]).of('EST')).toBeUndefined();
   });
 
-  test('the first whole block counts; a forged one before the real one does not hide it', () => {
+  test('the last whole block counts (the crash handler\'s, written just before the death): a forged one before it does not stand for it', () => {
     const r = read([head('EST'), frame(0, '/etc/passwd', '1'), end(1), head('EST'), frame(0, 'exe', 'abc'), end(1), head('EST'), frame(0, 'exe', 'def'), end(1)]);
-    expect(r.of('EST')!.frames).toEqual([{ object: 'exe', offset: 0xabcn }]);
+    expect(r.of('EST')!.frames).toEqual([{ object: 'exe', offset: 0xdefn }]);
+    // a block left unfinished or malformed after a whole one does not erase it
+    const cut = read([head('EST'), frame(0, 'exe', 'abc'), end(1), head('EST'), frame(0, '/etc/passwd', '1'), end(1), head('EST'), frame(0, 'exe', '1')]);
+    expect(cut.of('EST')!.frames).toEqual([{ object: 'exe', offset: 0xabcn }]);
   });
 
   test('addr2line is given the executable the service names and the offsets only (a caller\'s: the byte before its return address)', () => {

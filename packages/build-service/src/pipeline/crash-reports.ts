@@ -12,7 +12,9 @@
  * The block is a module's output: anything may be written in its place. Only the exact format is
  * read, each line bounded; a block counts only when the module that wrote it (the launcher's tag)
  * is the module it names, its frames numbered from 0 without a gap, at most MAX_FRAMES, and its end
- * line counts them; the first whole block of a module only, of MAX_MODULES modules at most. What it
+ * line counts them; the last whole block of a module (the crash handler writes its block just
+ * before the process dies: one the module's code printed before does not stand for it), of
+ * MAX_MODULES modules at most. What it
  * names is never run: the executable addr2line reads is the one the service knows for the module,
  * and only offsets (numbers) are passed to it.
  */
@@ -67,11 +69,13 @@ export class CrashReports {
 
   /** A line of the run's output, without its tag; `source`: the module the launcher tagged it with. */
   line(text: string, source: string): void {
-    if (!text.startsWith(CRASH_MARK) || text.length > MAX_LINE || this.done.has(source)) return;
+    if (!text.startsWith(CRASH_MARK) || text.length > MAX_LINE) return;
     const head = HEAD.exec(text);
     if (head) {
-      // a module names itself only; a second head starts the block anew
-      if (head[1] !== source || (!this.open.has(source) && this.open.size + this.done.size >= MAX_MODULES)) return;
+      // a module names itself only; a second head starts the block anew (a whole one read before
+      // stays until this one is whole: the crash handler's block is the last the module writes)
+      const known = this.open.has(source) || this.done.has(source);
+      if (head[1] !== source || (!known && this.open.size + this.done.size >= MAX_MODULES)) return;
       this.open.set(source, { module: source, signal: Number(head[2]), signalName: head[3]!, address: head[4]!, frames: [] });
       return;
     }
@@ -93,7 +97,7 @@ export class CrashReports {
     if (end && Number(end[1]) === report.frames.length && report.frames.length) this.done.set(source, report);
   }
 
-  /** The whole block `module` wrote, if it wrote one. */
+  /** The last whole block `module` wrote, if it wrote one. */
   of(module: string): CrashReport | undefined {
     return this.done.get(module);
   }
