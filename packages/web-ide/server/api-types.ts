@@ -157,4 +157,10 @@ export interface LogFolderListing {
   notRead: string[];
   /** All such entries (notRead names the first). */
   notReadCount: number;
+  /**
+   * What the folder's crash files say (`MODULE.crash`, saved by contract-launch: docs/runtime-api.md
+   * "Crash file"), line by line: each crashed module's signal and frames as raw offsets, and the
+   * addr2line command that maps them (`contract trace` maps them itself); a file not read, why.
+   */
+  crashSites?: string[];
 }

@@ -108,6 +108,28 @@ describe('GET /api/log-folder', () => {
     expect(root.logs).toEqual(['huge_1.csv']);
   });
 
+  it('tells the crash sites of the folder\'s crash files (MODULE.crash), unmapped; a hostile one is not read', async () => {
+    const block = (m: string, obj = 'exe') => [`==contract-crash== module ${m} signal 11 SIGSEGV addr 0x0`, '==contract-crash== build-id 0011aabb', `==contract-crash== frame 0 ${obj} 0x40d8`, '==contract-crash== frame 1 libc.so.6 0x2724a', '==contract-crash== end 2 frames', ''].join('\n');
+    mkdirSync(join(ws, 'crashed'));
+    writeFileSync(join(ws, 'crashed', 'EST_1.csv'), 'mono_ns,wall_time,module,event,peer,port,size,detail\n');
+    writeFileSync(join(ws, 'crashed', 'EST.crash'), block('EST'));
+    writeFileSync(join(ws, 'crashed', 'MSC.crash'), block('EST')); // EST's report in MSC's file
+    writeFileSync(join(ws, 'crashed', 'SUP.crash'), block('SUP', '/etc/passwd'));
+    symlinkSync(join(ws, 'crashed', 'EST.crash'), join(ws, 'crashed', 'ORD.crash'));
+    const listing = (await (await get('/api/log-folder?path=crashed')).json()) as { logs: string[]; crashSites?: string[] };
+    expect(listing.logs).toEqual(['crashed/EST_1.csv']);
+    expect(listing.crashSites).toEqual([
+      'EST crashed: signal 11 (SIGSEGV) at address 0x0, executable build-id 0011aabb',
+      '  #0 the executable+0x40d8',
+      '  #1 libc.so.6+0x2724a',
+      "  not mapped to the code: `contract trace crashed` maps them to files and lines, with the executable beside the logs",
+      "  map them with the executable that crashed: addr2line -f -i -e crashed/../modules/EST_mod/EST 0x40d8 (each caller's return address less 1: its call)",
+      ...['MSC', 'ORD', 'SUP'].map((m) => `crashed/${m}.crash: not read (a crash file is a regular file of at most 32768 bytes holding one crash report of the module it is named after)`),
+    ]);
+    // no crash file: no crashSites
+    expect('crashSites' in ((await (await get('/api/log-folder?path=logs')).json()) as object)).toBe(false);
+  });
+
   it('past 256 logs: the first 256 by name, the others counted', async () => {
     const many = (await (await get('/api/log-folder?path=many')).json()) as { logs: string[]; more: number; notRead: string[]; notReadCount: number };
     expect(many.logs).toHaveLength(256);

@@ -18,10 +18,11 @@
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import { pipeline } from 'node:stream/promises';
 import { HttpError } from './http-error.js';
-import { WorkspaceFs } from './workspace-fs.js';
+import { WorkspaceFs, type DirAt } from './workspace-fs.js';
 import type { WorkspacePaths } from './workspace-paths.js';
 import type { LogFolderListing } from './api-types.js';
 import { isLogFileName } from '@contract-studio/build-service/trace';
+import { crashFileModule, crashReportOfFile, crashSiteLines, MAX_CRASH_FILE_BYTES, MAX_CRASH_FILES } from '@contract-studio/build-service/crash-files';
 
 /** Most bytes of a CSV log read for a replay (the build service's default ARTIFACT_BOUNDS.fileBytes: the page holds what it replays; src/views/run-logs.ts LOG_READ_BYTES). */
 export const LOG_READ_BYTES = 256 * 1024 * 1024;
@@ -48,6 +49,43 @@ export async function handleLogApi(paths: WorkspacePaths, req: IncomingMessage, 
     }
   });
   return true;
+}
+
+/**
+ * The lines the folder's crash files tell (crash-files.ts: read bounded, regular files only, in the
+ * exact format naming the module of the file's name); the frames unmapped: the IDE runs no
+ * addr2line, `contract trace` does, on the executable beside the logs whose build-id is the report's.
+ */
+async function folderCrashSites(dir: DirAt, rel: string): Promise<string[]> {
+  const names = (await WorkspaceFs.list(dir)).filter((d) => d.name.endsWith('.crash')).map((d) => d.name).sort().slice(0, MAX_CRASH_FILES);
+  const lines: string[] = [];
+  for (const name of names) {
+    const module = crashFileModule(name);
+    const shown = rel ? `${rel}/${name}` : name;
+    let text: string | null = null;
+    if (module) {
+      const opened = await WorkspaceFs.openFile(dir, name, shown).catch(() => null);
+      if (opened) {
+        try {
+          if (opened.stats.isFile() && opened.stats.size <= MAX_CRASH_FILE_BYTES) {
+            const buf = Buffer.alloc(MAX_CRASH_FILE_BYTES);
+            const { bytesRead } = await opened.handle.read(buf, 0, MAX_CRASH_FILE_BYTES, 0);
+            text = buf.subarray(0, bytesRead).toString('latin1');
+          }
+        } finally {
+          await opened.handle.close().catch(() => undefined);
+        }
+      }
+    }
+    const report = module && text !== null ? crashReportOfFile(text, module) : undefined;
+    if (!report) {
+      lines.push(`${shown}: not read (a crash file is a regular file of at most ${MAX_CRASH_FILE_BYTES} bytes holding one crash report of the module it is named after)`);
+      continue;
+    }
+    const exe = `${rel ? `${rel}/` : ''}../modules/${report.module}_mod/${report.module}`;
+    lines.push(...crashSiteLines(report, exe, null, `\`contract trace ${rel || '.'}\` maps them to files and lines, with the executable beside the logs`));
+  }
+  return lines;
 }
 
 /** Logs of one folder a replay reads at most (the Monitor's bound: its run list, its model). */
@@ -80,7 +118,9 @@ export async function handleLogFolderApi(paths: WorkspacePaths, req: IncomingMes
     const listed = regular.slice(0, FOLDER_LOGS_MAX);
     // their sizes (lstat: no link followed): the replay reads the small logs first under its bound
     const sizes = await Promise.all(listed.map(async (d) => (await WorkspaceFs.entry(dir, d.name).catch(() => undefined))?.size ?? 0));
+    const crashSites = await folderCrashSites(dir, rel);
     return {
+      ...(crashSites.length ? { crashSites } : {}),
       logs: listed.map((d) => (rel ? `${rel}/${d.name}` : d.name)),
       sizes,
       more: Math.max(0, regular.length - FOLDER_LOGS_MAX),

@@ -26,6 +26,11 @@ const ADDR2LINE_TIMEOUT_MS = 10_000;
 const ELF_READ_MAX = 64 * 1024;
 const CRASH_FILE_NAME = /^([A-Za-z_]\w{0,63})\.crash$/;
 
+/** The module a crash file's name names (`EST.crash`: EST), undefined for any other name. */
+export function crashFileModule(name: string): string | undefined {
+  return CRASH_FILE_NAME.exec(name)?.[1];
+}
+
 /** What a logs folder's crash file tells. */
 export interface CrashFileSite {
   module: string;

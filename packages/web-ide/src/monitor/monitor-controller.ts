@@ -441,7 +441,10 @@ export class MonitorController {
     const counted = unreadableNote(recordCounts(model));
     const inFolder = paths.length + listing.more + listing.notReadCount;
     const read = leftOut.length ? `${files.length} of ${inFolder} CSV logs in ${where}${counted} (left out: ${leftOut.join('; ')})${whole}` : `${files.length} CSV log(s) in ${where}${counted}`;
-    const label = unread.length ? `${read} (not whole: ${unread.join('; ')})` : read;
+    const told = unread.length ? `${read} (not whole: ${unread.join('; ')})` : read;
+    // where its crashed modules crashed, from the folder's crash files (the server reads them: GET /api/log-folder)
+    const crashSites = 'crashSites' in listing && listing.crashSites?.length ? ` — crash sites (the logs' crash files): ${listing.crashSites.map((l) => l.trim()).join('; ')}` : '';
+    const label = `${told}${crashSites}`;
     // (a log read in part does not run to the run's end: its module is not taken for one that ended without an exit record)
     const run: Run = { id: `dir:${folder}`, label, model, live: false, whole: !partly.length, project: this.deps.projectOf(folder ? `${folder}/x` : 'x') };
     this.keepRecorded(run);
