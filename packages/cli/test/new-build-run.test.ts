@@ -417,10 +417,10 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(io.stderr).toMatch(
             /^\[ORD\] STUCK: CTL has not finished release #\d+ after \d+ periods: does its exec region loop, or never set \*stateindex = -1\? \(it ran \d+% of the last [\d.]+ s\)$/m,
         );
-        // one line when the cycle begins to overrun, not one per tick; and, when the schema is deactivated
+        // one line when the cycle begins to overrun (naming the module it still runs), not one per tick; and, when the schema is deactivated
         // before ORD stops, one saying how many releases the cycle skipped in all
         const overruns = io.stdout.match(/^\[ORD\] overrun.*$/gm) ?? [];
-        expect(overruns[0]).toBe('[ORD] overrun: goTo cycle still running, release skipped');
+        expect(overruns[0]).toBe('[ORD] overrun: goTo cycle still running (CTL), release skipped');
         expect(overruns.slice(1)).toEqual(overruns.length > 1 ? [expect.stringMatching(/^\[ORD\] overrun: goTo cycle ended after \d+ skipped releases$/)] : []);
         expect(io.stderr).toMatch(/^FAILED: run finished with 1 problem\(s\): CTL has not finished release #\d+ after \d+ periods/m);
         expect(io.stderr).toMatch(/^problem: CTL has not finished release/m);

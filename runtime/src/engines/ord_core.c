@@ -303,6 +303,23 @@ static int64_t stuck_due(const OrdCore *c, int *schema, int *module) {
     return due;
 }
 
+/* "CTL, EST": the modules of ss's current cycle released and not finished (the ones the overrun
+   waits for: running their release, or not yet begun on it), cut with "..." past the buffer; for a
+   held cycle (nothing released), the module whose earlier release holds it */
+static const char *running_modules(const OrdCore *c, const SchemaState *ss, char *buf, size_t n) {
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int m = 0; m < ss->s->nmodules; m++) {
+        if (!ss->released[m] || ss->finished[m]) continue;
+        const char *name = ss->s->modules[m].module;
+        if (used + strlen(name) + 8 > n) { snprintf(buf + used, n - used, "%s...", used ? ", " : ""); break; }
+        used += (size_t)snprintf(buf + used, n - used, "%s%s", used ? ", " : "", name);
+    }
+    const char *holder = used == 0 && ss->held ? busy_module(c, ss) : NULL;
+    if (holder) snprintf(buf, n, "%s", holder);
+    return buf;
+}
+
 static void do_tick(OrdCore *c, SchemaState *ss, int64_t until) {
     int64_t tick = ss->next_tick;
     ss->next_tick += ss->s->period_ns;
@@ -328,7 +345,11 @@ static void do_tick(OrdCore *c, SchemaState *ss, int64_t until) {
     if (ss->running) {
         ss->stats.overruns++;
         /* one line per cycle, not per tick: a module that never ends would flood the output */
-        if (++ss->cycle_overruns == 1) trace(c, "overrun: %s cycle still running, release skipped", ss->s->name);
+        if (++ss->cycle_overruns == 1) {
+            char running[160], named[164] = "";
+            if (*running_modules(c, ss, running, sizeof running)) snprintf(named, sizeof named, " (%s)", running);
+            trace(c, "overrun: %s cycle still running%s, release skipped", ss->s->name, named);
+        }
         if (!ss->held) check_stuck(c, ss, tick);
         return;
     }

@@ -131,7 +131,7 @@ void test_ord_overrun_skips_release(void) {
                        (const char *const[]){"0us release A (DIA)", "1000us release B (DIA)",
                                              "1000us release C (DIA)", "3000us release D (DIA)",
                                              "6000us deadline miss: DIA cycle 0 (ORD:0)",
-                                             "10000us overrun: DIA cycle still running, release skipped",
+                                             "10000us overrun: DIA cycle still running (D), release skipped",
                                              "20000us release A (DIA)", NULL},
                        __FILE__, __LINE__);
     OrdSchemaStats st;
@@ -293,7 +293,7 @@ void test_ord_ack_matched_to_its_cycle_by_release_id(void) {
                            "4000us ignored: E finished outside a cycle (release #1 is not outstanding)",
                            "4000us ignored: F finished outside a cycle (release #99 is not outstanding)",
                            "6000us deadline miss: FST cycle 1 (ORD:0)",
-                           "6000us overrun: FST cycle still running, release skipped",
+                           "6000us overrun: FST cycle still running (E), release skipped",
                            "9000us release E (FST)", NULL},
                        __FILE__, __LINE__);
     OrdSchemaStats st;
@@ -327,7 +327,7 @@ void test_ord_held_cycle_gives_up_after_1s(void) {
                        (const char *const[]){
                            "0us release E (FST)",
                            "2000us cycle of FST held: E still runs a release of an earlier activation",
-                           "5000us overrun: FST cycle still running, release skipped",
+                           "5000us overrun: FST cycle still running (E), release skipped",
                            "1000000us stuck: E has not finished release #1 after 333 periods (its schema's new cycle "
                            "waits for it): does its exec region set *stateindex = -1? (FST)",
                            "stuck E #1 (FST) after 333 periods",
@@ -362,11 +362,11 @@ void test_ord_deactivated_overrunning_cycle_tells_its_skipped_releases(void) {
     check_log_filtered(&LOG, (const char *const[]){"overrun", "activate", NULL},
                        (const char *const[]){
                            "0us activate SLW (activation #1 from SUP)",
-                           "200000us overrun: SLW cycle still running, release skipped",
+                           "200000us overrun: SLW cycle still running (G), release skipped",
                            "700000us overrun: SLW cycle ended after 3 skipped releases",
                            "700000us deactivate SLW (activation #1 from SUP)",
                            "800000us activate SLW (activation #2 from SUP)",
-                           "1000000us overrun: SLW cycle still running, release skipped",
+                           "1000000us overrun: SLW cycle still running (G), release skipped",
                            "1100000us deactivate SLW (activation #2 from SUP)", NULL},
                        __FILE__, __LINE__);
     OrdSchemaStats st;
@@ -418,7 +418,7 @@ void test_ord_module_that_never_finishes_is_reported_once(void) {
     check_log_filtered(&LOG, (const char *const[]){"release G", "overrun", "stuck", NULL},
                        (const char *const[]){
                            "0us release G (SLW)",
-                           "200000us overrun: SLW cycle still running, release skipped",
+                           "200000us overrun: SLW cycle still running (G), release skipped",
                            stuck, called, last,
                            "5100000us overrun: SLW cycle ended after 25 skipped releases",
                            "5200000us release G (SLW)", NULL},
@@ -597,7 +597,7 @@ void test_ord_stuck_reported_when_every_tick_is_missed(void) {
     snprintf(called, sizeof called, "stuck G #%u (SLW) after 10 periods", g);
     check_log_filtered(&LOG, (const char *const[]){"missed", "overrun", "stuck", NULL},
                        (const char *const[]){"200000us missed tick of SLW (cycle 1)",
-                                             "400000us overrun: SLW cycle still running, release skipped",
+                                             "400000us overrun: SLW cycle still running (G), release skipped",
                                              stuck, called, NULL},
                        __FILE__, __LINE__);
     OrdSchemaStats st;

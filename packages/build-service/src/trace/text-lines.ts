@@ -35,7 +35,8 @@ export const SCHEDULER_LINES: readonly LinePattern[] = [
     { what: 'ignored', re: new RegExp(`^ignored: deactivate ${ID} \\(not this activation\\)$`), keys: ['schema'] },
     // (older logs: no cycle)
     { what: 'deadline_miss', re: new RegExp(`^deadline miss: ${ID}(?: cycle (\\d+))? \\(ORD:0\\)$`), keys: ['schema', 'cycle'] },
-    { what: 'overrun', re: new RegExp(`^overrun: ${ID} cycle still (running|held)`), keys: ['schema', 'state'] },
+    // `overrun: S cycle still running (CTL, EST), release skipped`: the modules it still runs (logs before 2026-12-07 name none)
+    { what: 'overrun', re: new RegExp(`^overrun: ${ID} cycle still (running|held)(?: \\((${ID}(?:, ${ID})*(?:, \\.\\.\\.)?)\\))?`), keys: ['schema', 'state', 'modules'] },
     { what: 'overrun_ended', re: new RegExp(`^overrun: ${ID} cycle ended after (\\d+) skipped releases$`), keys: ['schema', 'skipped'] },
     { what: 'missed_tick', re: new RegExp(`^missed tick of ${ID}(?: \\(cycle (\\d+)\\))?$`), keys: ['schema', 'cycle'] },
     { what: 'missed_ticks_ended', re: new RegExp(`^missed ticks: ${ID} cycle ended after (\\d+) missed ticks$`), keys: ['schema', 'missed'] },

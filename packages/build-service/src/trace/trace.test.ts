@@ -106,7 +106,10 @@ describe('reading a log', () => {
         expect(fields('scheduler', 'deadline miss: DIA (ORD:0)')).toEqual({ what: 'deadline_miss', schema: 'DIA' }); // older logs
         expect(fields('scheduler', 'activate conveyor (activation #2 from LIN) and more')).toEqual({ what: 'other' });
         expect(fields('scheduler', 'conflict: ICF shares a module with active ISC (ORD:1)')).toEqual({ what: 'conflict', schema: 'ICF', active: 'ISC' });
-        expect(fields('scheduler', 'overrun: DIA cycle still running, release skipped')).toEqual({ what: 'overrun', schema: 'DIA', state: 'running' });
+        expect(fields('scheduler', 'overrun: DIA cycle still running, release skipped')).toEqual({ what: 'overrun', schema: 'DIA', state: 'running' }); // older logs
+        // the modules the cycle still runs (released, not finished), named by ORD's line
+        expect(fields('scheduler', 'overrun: DIA cycle still running (D), release skipped')).toEqual({ what: 'overrun', schema: 'DIA', state: 'running', modules: 'D' });
+        expect(fields('scheduler', 'overrun: DIA cycle still running (B, C), release skipped')).toEqual({ what: 'overrun', schema: 'DIA', state: 'running', modules: 'B, C' });
         expect(fields('scheduler', 'late ack: B finished release #12 of an earlier cycle of DIA (not counted)')).toEqual({ what: 'late_ack', module: 'B', release: 12, schema: 'DIA' });
         expect(fields('scheduler', 'overrun: DIA cycle ended after 3 skipped releases')).toEqual({ what: 'overrun_ended', schema: 'DIA', skipped: 3 });
         expect(fields('scheduler', 'B finished release #12 at last (reported stuck, DIA)')).toEqual({ what: 'unstuck', module: 'B', release: 12, schema: 'DIA' });

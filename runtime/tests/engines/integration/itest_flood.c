@@ -72,8 +72,8 @@ void scenario_output_flood(const char *root, const char *bin, const char *launch
              "%ld in all, the CSV log's %d; %d [ORD] lines in all (at most 40)",
              printed, summaries, counted, printed + counted, csv_misses, ord_lines);
     check(printed >= 1 && printed <= 4 && summaries >= 1 && printed + counted == csv_misses && ord_lines <= 40, what);
-    check(txt && strstr(txt, "[ORD] overrun: FLD cycle still running, release skipped\n") &&
-              strstr(txt, "in the CSV log only: overrun: FLD cycle still running, release skipped)\n"),
+    check(txt && strstr(txt, "[ORD] overrun: FLD cycle still running (FLM), release skipped\n") &&
+              strstr(txt, "in the CSV log only: overrun: FLD cycle still running (FLM), release skipped)\n"),
           "ORD's overrun lines are summarised the same way");
     if (scenario_failed(&s)) say_output_tail("output-flood", txt, 4000);
     free(txt);
