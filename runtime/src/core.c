@@ -533,6 +533,7 @@ void rt_install_signal_cleanup(void)
 void ContractShutdown(void)
 {
     rt_outbox_drain(); /* its failures are logged: before the log closes */
+    rt_eventflow_say_waits();
     rt_error_repeats_say();
     rt_log_close();
     rt_dataflow_teardown();

@@ -49,6 +49,44 @@ void rt_remember_event(const RequestMessage *msg)
     memcpy(g_rt.last_event, msg, REQUEST_HEADER_SIZE + msg->DataSize);
 }
 
+/* PostEvent's sends that waited for room in a subscriber's full mailbox (its consumer reads its
+ * events slower than they come) are told by `event_waited` records, one per streak, not one per
+ * wait: a streak ends (its record written) at the first post to that subscriber 1 s or more after
+ * the streak's first wait, at the unsubscription and at the module's exit. So at most one record a
+ * second per subscriber, however fast the producer posts; no allocation, a few words per post. */
+#define WAIT_STREAK_NS 1000000000LL
+
+static void say_waits(Subscriber *s, const ModuleDetect *o, RTIME now)
+{
+    char detail[160];
+    snprintf(detail, sizeof detail, "to_port=%d waits=%ld wait_ns=%lld max_wait_ns=%lld streak_ns=%lld", s->port, s->waits,
+             (long long)s->wait_ns, (long long)s->wait_max_ns, (long long)(now - s->wait_since));
+    ContractLog("event_waited", s->module, o->Port, o->Size, detail);
+    s->waits = 0;
+    s->wait_ns = s->wait_max_ns = s->wait_since = 0;
+}
+
+/* One post's send to s: counted in its streak when it waited (`waited` ns); the streak's record
+ * when it has lasted WAIT_STREAK_NS */
+static void count_wait(Subscriber *s, const ModuleDetect *o, RTIME waited)
+{
+    if (waited <= 0 && s->waits == 0) return;
+    RTIME now = GetTime();
+    if (waited > 0) {
+        if (s->waits++ == 0) s->wait_since = now - waited;
+        s->wait_ns += waited;
+        if (waited > s->wait_max_ns) s->wait_max_ns = waited;
+    }
+    if (now - s->wait_since >= WAIT_STREAK_NS) say_waits(s, o, now);
+}
+
+void rt_eventflow_say_waits(void)
+{
+    for (int d = 0; g_rt.event_subs && d < g_rt.n_idetect; d++)
+        for (Subscriber *s = g_rt.event_subs[d]; s; s = s->next)
+            if (s->waits) say_waits(s, &g_rt.idetect[d], GetTime());
+}
+
 static int has_live_subscriber(int d)
 {
     for (const Subscriber *s = g_rt.event_subs[d]; s; s = s->next)
@@ -66,11 +104,13 @@ int PostEvent(void *var)
     while (*it) {
         Subscriber *s = *it;
         if (s->periodicity == EVENT_SPENT) { it = &s->next; continue; }
+        g_rt.send_waited_ns = 0;
         int rc = SendEvent(s->module, s->port, o->Port, var, o->Size);
         char detail[64];
         snprintf(detail, sizeof detail, "to_port=%d%s%s", s->port, s->periodicity == EVENT_ONESHOT ? " oneshot" : "",
                  rc == CONTRACT_OK ? "" : " failed");
         ContractLog("event_posted", s->module, o->Port, o->Size, detail);
+        count_wait(s, o, g_rt.send_waited_ns);
         if (rc == CONTRACT_OK) reached++;
         if (rc == CONTRACT_OK && s->periodicity == EVENT_ONESHOT) s->periodicity = EVENT_SPENT;
         it = &s->next;
@@ -140,6 +180,7 @@ int UnsubscribeUserToEvent(const char *targetModule, int targetPort, int sourceP
     for (Subscriber **it = &g_rt.event_subs[d]; *it; it = &(*it)->next) {
         if (strcmp((*it)->module, targetModule) == 0 && (*it)->port == targetPort) {
             Subscriber *gone = *it;
+            if (gone->waits) say_waits(gone, &g_rt.idetect[d], GetTime());
             *it = gone->next;
             ContractLog("event_unsubscribed", targetModule, sourcePort, 0,
                         gone->periodicity == EVENT_SPENT ? "one-shot already spent" : "");

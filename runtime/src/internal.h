@@ -31,6 +31,10 @@ typedef struct Subscriber {
     struct sockaddr_un addr;
     socklen_t addrlen;
     int fd;            /* connected sender socket, -1 until first use */
+    /* events: PostEvent's sends to it that waited for room in its full mailbox since the last
+     * `event_waited` record (eventflow.c): how many, how long in all and at most, since when */
+    long waits;
+    RTIME wait_ns, wait_max_ns, wait_since;
 } Subscriber;
 
 typedef struct Pending { struct Pending *next; int ctl; RequestMessage msg; } Pending; /* ctl: came by the control channel */
@@ -63,6 +67,7 @@ typedef struct {
     int priority;           /* current priority 1..99 (0: never set) */
     int send_nowait;        /* ContractSetNonBlockingSends: requests never wait for a full mailbox */
     int send_queued;        /* ContractSetQueuedSends: requests to a full mailbox are kept (outbox.c) */
+    RTIME send_waited_ns;   /* how long the last request sent waited for room in a full mailbox (0: it had room) */
     int ready;              /* a module: its <NAME>.ready is written (rt_mark_ready) */
     int engine;             /* RT_ENGINE_*: which engine runs in this process (its own record kinds: csvlog.c) */
 } ContractRuntime;
@@ -185,6 +190,8 @@ int rt_dataflow_setup(void);
 void rt_dataflow_teardown(void);
 int rt_eventflow_setup(void);
 void rt_eventflow_teardown(void);
+/* Writes the `event_waited` record of every streak of waits not told yet (before the log closes). */
+void rt_eventflow_say_waits(void);
 void rt_remember_event(const RequestMessage *msg);
 
 #endif

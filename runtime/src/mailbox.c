@@ -143,6 +143,21 @@ static OnFull on_full(void)
 
 #define KEPT 1 /* try_send: the request is kept for its receiver's full mailbox (outbox.c) */
 
+/* A request that waits for room (FULL_WAIT): tried without waiting first, so that a wait is known
+ * and measured (g_rt.send_waited_ns: PostEvent's `event_waited` records, eventflow.c); the
+ * mailbox had room: one sendmsg, as before. */
+static int send_waiting(const char *module, const RequestMessage *msg, size_t len)
+{
+    g_rt.send_waited_ns = 0;
+    int err = rt_send_datagram(module, msg, len, 1);
+    if (err != EAGAIN && err != EWOULDBLOCK) return err;
+    RTIME t0 = GetTime();
+    err = rt_send_datagram(module, msg, len, 0);
+    RTIME waited = GetTime() - t0;
+    g_rt.send_waited_ns = waited > 0 ? waited : 1;
+    return err;
+}
+
 /* Sends msg: CONTRACT_OK, KEPT, or the CONTRACT_E* code of a failure (already said: rt_error). */
 static int try_send(const char *module, RequestMessage *msg, OnFull full)
 {
@@ -161,7 +176,8 @@ static int try_send(const char *module, RequestMessage *msg, OnFull full)
     msg->ReceptionTime = 0;
     size_t len = REQUEST_HEADER_SIZE + msg->DataSize;
     /* a receiver with requests kept gets this one after them (in order): kept too */
-    int err = full == FULL_KEEP && rt_outbox_holds(module) ? EAGAIN : rt_send_datagram(module, msg, len, full != FULL_WAIT);
+    int err = full == FULL_KEEP && rt_outbox_holds(module) ? EAGAIN
+            : full == FULL_WAIT ? send_waiting(module, msg, len) : rt_send_datagram(module, msg, len, 1);
     if (err == 0) return CONTRACT_OK;
     if (full == FULL_KEEP && (err == EAGAIN || err == EWOULDBLOCK)) {
         int rc = rt_outbox_add(module, msg, len);

@@ -71,6 +71,7 @@ int main(int argc, char *argv[])
     if (rt_write_pid_file() != 0) return 2;
     int rc = ModuleMain(argc, (const char **)argv);
     rt_outbox_drain(); /* its records before the last one */
+    rt_eventflow_say_waits(); /* PostEvent's waits not told yet */
     /* records=N counts this record too: a reader of the log can tell none is missing */
     snprintf(detail, sizeof detail, "status=%d records=%llu", rc, rt_log_records() + 1);
     ContractLog("module_exit", "", -1, 0, detail);

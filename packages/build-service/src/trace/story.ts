@@ -13,6 +13,8 @@ import { missedTicksOf, skippedReleasesOf } from './ord-counts.js';
 import { durationText } from './duration-text.js';
 import { ReleaseLateness } from './release-lateness.js';
 import { UndosToOrd } from './undos-to-ord.js';
+import { DataFlowUse } from './data-flow-use.js';
+import { EventWaits } from './event-waits.js';
 import { countRecord, isRule, type KnownRecord, type RecordCounts, type RuleCause, type TraceRecord, type TraceRecordBase } from './records.js';
 
 /** How the runtime ends the detail of an `error` record written while contract-launch stops the run. */
@@ -370,6 +372,10 @@ export class StoryTeller {
     private readonly cappedLogs = new Map<string, string>();
     /** Per periodic schema (at most STORY_FOLLOWED): how late ORD released its cycles, told in its schema line. */
     private readonly lateness = new Map<string, ReleaseLateness>();
+    /** ORD's data flows: those connected long enough that delivered nothing, or far less than read (flowLines). */
+    private readonly dataFlows = new DataFlowUse();
+    /** Event flows whose posts waited for room in their subscriber's full mailbox (flowLines). */
+    private readonly eventWaits = new EventWaits();
 
     /**
      * `+S.mmmmmm MODULE what` for a told record, else undefined; counts every record, and every
@@ -395,6 +401,9 @@ export class StoryTeller {
         const what = String(k.fields['what'] ?? '');
         if (k.kind === 'supervisor') this.followAction(k, what);
         this.undos.see(k);
+        this.dataFlows.see(k);
+        const waited = this.eventWaits.see(k);
+        if (waited) return `${at(k)} ${waited}`;
         if (k.kind === 'supervisor' && SUPERVISOR_TOLD.has(what)) return `${at(k)} ${k.detail}`;
         // every action and undo, with its target and value: who activated a schema or a function, what it sent,
         // the modules it started and stopped, the flows it connected, the priorities it claimed
@@ -697,6 +706,15 @@ export class StoryTeller {
             'the figures above and the counts below hold only their records up to then'];
     }
 
+    /**
+     * What the flows did, told at the end before the schemas' lines: each event flow whose posts
+     * waited for room (event-waits.ts), each data flow ORD connected that delivered nothing or far
+     * less than its reader read (data-flow-use.ts).
+     */
+    flowLines(): string[] {
+        return [...this.eventWaits.lines(), ...this.dataFlows.lines()];
+    }
+
     /** The same figures as data, in name order (`contract run` and `contract simulate --format json`). */
     schemaFigures(): NamedSchemaFigures[] {
         return [...this.schemas].sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0)).map(([schema, f]) => ({ schema, ...f }));
@@ -705,6 +723,14 @@ export class StoryTeller {
     /** The records told so far (readable ones) and, apart, the unreadable lines: the numbers of the summary's first and last counts. */
     get recordCounts(): RecordCounts {
         return { ...this.counted };
+    }
+
+    /** The line of counts' words for the flows flowLines tells (`1 data flow that delivered nothing, 340 event posts that waited for room, `), '' when none. */
+    private flowCounts(): string {
+        const { silent, sparse } = this.dataFlows.counts, waits = this.eventWaits.waits;
+        return `${silent ? `${plural(silent, 'data flow')} that delivered nothing, ` : ''}` +
+            `${sparse ? `${plural(sparse, 'data flow')} written far less often than read, ` : ''}` +
+            `${waits ? `${plural(waits, 'event post')} that waited for room, ` : ''}`;
     }
 
     /**
@@ -718,11 +744,12 @@ export class StoryTeller {
             `${plural(n('scheduler:held'), 'held cycle')}, ${plural(n('sup_rule'), 'rule change')}, ` +
             `${n('data_received')} data and ${plural(n('event_received'), 'event delivery', 'event deliveries')}, ` +
             `${n('data_dropped') ? `${plural(n('data_dropped'), 'data value')} dropped, ` : ''}` +
+            `${this.flowCounts()}` +
             `${this.unheard ? `${plural(this.unheard, 'event')} with no subscriber, ` : ''}${plural(this.counted.unreadable, 'unreadable line')}`;
     }
 }
 
-/** One line per told record, `+S.mmmmmm MODULE what`, then one line per periodic schema, then a summary line of counts. */
+/** One line per told record, `+S.mmmmmm MODULE what`, then the flows' lines, then one line per periodic schema, then a summary line of counts. */
 export function renderStory(records: TraceRecord[]): string[] {
     const teller = new StoryTeller();
     const lines: string[] = [];
@@ -730,6 +757,6 @@ export function renderStory(records: TraceRecord[]): string[] {
         const line = teller.tell(r);
         if (line !== undefined) lines.push(line);
     }
-    lines.push(...teller.endLines(), ...teller.schemaLines(), teller.summary());
+    lines.push(...teller.endLines(), ...teller.flowLines(), ...teller.schemaLines(), teller.summary());
     return lines;
 }

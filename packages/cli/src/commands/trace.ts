@@ -162,7 +162,7 @@ async function print(io: CliIO, piece: string): Promise<boolean> {
     return !io.outputClosed?.aborted;
 }
 
-/** A story told record by record: its lines, then what the logs say of modules that did not end (ModuleEnds), then each periodic schema's figures and the counts. */
+/** A story told record by record: its lines, then what the logs say of modules that did not end (ModuleEnds), then the flows that delivered nothing or waited for room, then each periodic schema's figures and the counts. */
 class Story {
     private readonly teller = new StoryTeller();
 
@@ -182,7 +182,7 @@ class Story {
 
     /** Each line one line: a newline or a bidi override carried by a record (a trace file's detail, an unreadable line's reason) is escaped, never a line of its own. */
     end(): string {
-        return [...this.ends.lines(), ...this.teller.endLines(), ...this.teller.schemaLines(), this.teller.summary()].map((l) => safeName(l) + '\n').join('') + this.ends.unreadable().map((l) => safeName(l) + '\n').join('');
+        return [...this.ends.lines(), ...this.teller.endLines(), ...this.teller.flowLines(), ...this.teller.schemaLines(), this.teller.summary()].map((l) => safeName(l) + '\n').join('') + this.ends.unreadable().map((l) => safeName(l) + '\n').join('');
     }
 }
 

@@ -7,7 +7,8 @@
  * each), so AMC's mailbox is full from AMF's first events to the end. Checks, from the CSV logs:
  *  (a) at the activation AMC's START comes before any event of EVF, soon after the activation;
  *  (b) R's priority change (resttime) and parameter to the flooded AMC, then E's undo (AMC's
- *      STOP), reach AMC within a small bound, not after ~2 s; no request of SKS is kept or fails.
+ *      STOP), reach AMC within a small bound, not after ~2 s; no request of SKS is kept or fails;
+ *  (c) AMF's posts that waited for room in AMC's mailbox are told by a few `event_waited` records.
  * The supervisors' requests travel on the receiver's control channel, read before its mailbox
  * (docs/runtime-api.md "Mailboxes and the control channel").
  */
@@ -77,6 +78,24 @@ void scenario_event_flood(const char *root, const char *bin, const char *launche
     snprintf(what, sizeof what, "SKS kept no request for a full mailbox (%d requests_kept) and none failed (%d errors)",
              count_of(sks, ",requests_kept,"), count_of(sks, ",error,"));
     check(count_of(sks, ",requests_kept,") == 0 && count_of(sks, ",error,") == 0, what);
+    /* (c) AMF's posts that waited for room in AMC's full mailbox are told, bounded: `event_waited`
+     * records (one per streak of waits: at most one a second, and one at the unsubscription) that
+     * count the waits and their time */
+    char *amf = read_csv_log(&s, "AMF");
+    long waits = 0, wait_ms = 0, records = 0;
+    for (const char *at = amf ? strstr(amf, ",event_waited,AMC,") : NULL; at; at = strstr(at + 1, ",event_waited,AMC,")) {
+        const char *w = strstr(at, " waits="), *t = strstr(at, " wait_ns=");
+        records++;
+        if (w) waits += strtol(w + 7, NULL, 10);
+        if (t) wait_ms += (long)(strtoll(t + 9, NULL, 10) / 1000000);
+    }
+    int posted = amf ? count_of(amf, ",event_posted,AMC,") : 0;
+    snprintf(what, sizeof what,
+             "AMF's posts to the flooded AMC that waited for room are told: %ld event_waited record(s) (1 to 3: one per "
+             "streak, at most one a second) counting %ld waits (at least 20, at most the %d posts) of %ld ms in all (at least 50)",
+             records, waits, posted, wait_ms);
+    check(records >= 1 && records <= 3 && waits >= 20 && waits <= posted && wait_ms >= 50, what);
+    free(amf);
     if (scenario_failed(&s)) {
         char *txt = slurp(s.launch);
         say_output_tail("event-flood", txt, 3000);

@@ -1,0 +1,164 @@
+/**
+ * Data flows that ORD connected and that delivered nothing, or far less than their reader reads,
+ * as `contract trace` tells them at the end: a producer whose exec region never calls PostData
+ * (or calls it on another port) leaves its consumer reading nothing, silently — no drop, no error,
+ * the schema's cycles complete. From ORD's `connect A:p -> B:i * k` and `disconnect` lines (the
+ * activation that follows names the schema), A's `data_posted` and B's `data_received` records,
+ * and ORD's releases of B, while the flow is connected:
+ * - `data flow EST:1 -> CTL:0 connected for 7.07 s (schema altHold): 0 values delivered (EST posted
+ *   none on its output :1); CTL read nothing in its 700 releases`;
+ * - `... : 12 values delivered (1.7 a second), read 12 times in CTL's 700 releases (99 a second):
+ *   1 value for 58 releases` when A posted (every k-th value for `* k`) fewer than a tenth of B's
+ *   releases.
+ * Only flows connected SILENT_FLOW_MIN_NS in all are told: a flow connected for a moment (a
+ * schema activated and deactivated at once) may rightly have delivered nothing. Bounded: at most
+ * FLOWS_FOLLOWED flows, a few numbers each.
+ */
+import { durationText } from './duration-text.js';
+import { ownString } from './parse.js';
+import type { KnownRecord } from './records.js';
+
+/** A data flow is told only when connected this long in all (its connections summed): 1 s. */
+export const SILENT_FLOW_MIN_NS = 1_000_000_000;
+/** A flow that delivered fewer than one value for this many of its reader's releases (its `* k` taken into account) is told as sparse. */
+export const SPARSE_FLOW_RATIO = 10;
+/** Flows followed at most (a forged log naming a million flows does not grow the story's memory). */
+const FLOWS_FOLLOWED = 4096;
+/** Schemas named for one flow at most. */
+const SCHEMAS_NAMED = 4;
+
+interface FlowUse {
+    producer: string;
+    port: string;
+    consumer: string;
+    toPort: string;
+    periodicity: number;
+    schemas: string[];
+    /** Connected since (the connect record's time), undefined while disconnected. */
+    since?: bigint;
+    connectedNs: number;
+    posted: number;
+    received: number;
+    consumerReleases: number;
+}
+
+/** `1 value`, `2 values`. */
+function plural(n: number, one: string, many = `${one}s`): string {
+    return `${n} ${n === 1 ? one : many}`;
+}
+
+/** `1.7 a second` for n in ns. */
+function rate(n: number, ns: number): string {
+    return `${+(n / (ns / 1e9)).toPrecision(2)} a second`;
+}
+
+export class DataFlowUse {
+    /** `A:p -> B:i` -> its use. */
+    private readonly flows = new Map<string, FlowUse>();
+    /** `A -> B:i` (what a data_received record names: its producer, not the producer's port) -> the flow. */
+    private readonly byReading = new Map<string, FlowUse>();
+    /** Consumer -> the flows into it (ORD's releases of it are counted for each while connected). */
+    private readonly byConsumer = new Map<string, FlowUse[]>();
+    /** Flows connected since ORD's last activation: that activation names their schema. */
+    private pending: FlowUse[] = [];
+    /** The latest record's time: a flow still connected at the end counts up to it. */
+    private lastNs: bigint | undefined;
+
+    /** Follows one record (any kind: its time is the run's end so far). */
+    see(k: KnownRecord): void {
+        const t = BigInt(k.monoNs);
+        if (this.lastNs === undefined || t > this.lastNs) this.lastNs = t;
+        if (k.kind === 'scheduler' && k.module === 'ORD') this.scheduler(k, t);
+        else if (k.kind === 'data_posted') {
+            const f = this.flows.get(`${k.module}:${k.port ?? '?'} -> ${k.peer}:${String(k.fields['to_port'] ?? '?')}`);
+            if (f?.since !== undefined) f.posted++;
+        } else if (k.kind === 'data_received') {
+            const f = this.byReading.get(`${k.peer} -> ${k.module}:${k.port ?? '?'}`);
+            if (f?.since !== undefined) f.received++;
+        } else if (k.kind === 'ord_release') {
+            for (const f of this.byConsumer.get(k.peer) ?? []) if (f.since !== undefined) f.consumerReleases++;
+        }
+    }
+
+    private scheduler(k: KnownRecord, t: bigint): void {
+        const what = k.fields['what'];
+        if (what === 'activate') {
+            const schema = String(k.fields['schema'] ?? '');
+            for (const f of this.pending) if (schema && !f.schemas.includes(schema) && f.schemas.length < SCHEMAS_NAMED) f.schemas.push(ownString(schema));
+            this.pending = [];
+            return;
+        }
+        if (what !== 'connect' && what !== 'disconnect') return;
+        const producer = String(k.fields['module'] ?? ''), port = String(k.fields['port'] ?? ''), consumer = String(k.fields['to_module'] ?? ''), toPort = String(k.fields['to_port'] ?? '');
+        const name = `${producer}:${port} -> ${consumer}:${toPort}`;
+        let f = this.flows.get(name);
+        if (what === 'disconnect') {
+            if (f?.since !== undefined) {
+                f.connectedNs += Number(t - f.since);
+                f.since = undefined;
+            }
+            return;
+        }
+        if (!f) {
+            if (this.flows.size >= FLOWS_FOLLOWED) return;
+            f = { producer: ownString(producer), port: ownString(port), consumer: ownString(consumer), toPort: ownString(toPort), periodicity: 1, schemas: [], connectedNs: 0, posted: 0, received: 0, consumerReleases: 0 };
+            this.flows.set(ownString(name), f);
+            this.byReading.set(ownString(`${producer} -> ${consumer}:${toPort}`), f);
+            const into = this.byConsumer.get(consumer);
+            if (into) into.push(f);
+            else this.byConsumer.set(f.consumer, [f]);
+        }
+        const k0 = k.fields['periodicity'];
+        f.periodicity = typeof k0 === 'number' && Number.isSafeInteger(k0) && k0 > 0 ? k0 : 1;
+        f.since ??= t;
+        if (this.pending.length < FLOWS_FOLLOWED) this.pending.push(f);
+    }
+
+    /** How long the flow was connected in all, up to the run's last record for a flow still connected. */
+    private connectedNs(f: FlowUse): number {
+        return f.connectedNs + (f.since !== undefined && this.lastNs !== undefined ? Number(this.lastNs - f.since) : 0);
+    }
+
+    /** Whether the flow, connected long enough, delivered nothing or had nothing read. */
+    private silent(f: FlowUse): boolean {
+        return this.connectedNs(f) >= SILENT_FLOW_MIN_NS && (f.posted === 0 || f.received === 0);
+    }
+
+    /** Whether the flow, connected long enough, delivered fewer than one value for SPARSE_FLOW_RATIO of its reader's releases. */
+    private sparse(f: FlowUse): boolean {
+        return this.connectedNs(f) >= SILENT_FLOW_MIN_NS && !this.silent(f) && f.consumerReleases >= SPARSE_FLOW_RATIO &&
+            f.posted * f.periodicity * SPARSE_FLOW_RATIO <= f.consumerReleases;
+    }
+
+    /** Flows that delivered nothing, and flows far sparser than their reader: the line of counts. */
+    get counts(): { silent: number; sparse: number } {
+        let silent = 0, sparse = 0;
+        for (const f of this.flows.values()) {
+            if (this.silent(f)) silent++;
+            else if (this.sparse(f)) sparse++;
+        }
+        return { silent, sparse };
+    }
+
+    /** One line per data flow told (silent, then sparse), in flow order, at the story's end. */
+    lines(): string[] {
+        const out: string[] = [];
+        for (const [name, f] of [...this.flows].sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0))) {
+            const ns = this.connectedNs(f);
+            const head = `data flow ${name} connected for ${durationText(ns)}${f.schemas.length ? ` (schema ${f.schemas.join(', ')})` : ''}: `;
+            const releases = plural(f.consumerReleases, 'release');
+            if (this.silent(f) && f.posted === 0) {
+                out.push(`${head}0 values delivered (${f.producer} posted none on its output :${f.port}); ${f.consumer} read nothing` +
+                    `${f.consumerReleases ? ` in its ${releases}` : ''}`);
+            } else if (this.silent(f)) {
+                out.push(`${head}${plural(f.posted, 'value')} posted, none read (${f.consumer} never read its input :${f.toPort}: GetData or GetLatestData` +
+                    `${f.consumerReleases ? `, in its ${releases}` : ''})`);
+            } else if (this.sparse(f)) {
+                out.push(`${head}${plural(f.posted, 'value')} delivered (${rate(f.posted, ns)}${f.periodicity > 1 ? `, every ${f.periodicity}th value` : ''}), ` +
+                    `read ${plural(f.received, 'time')} in ${f.consumer}'s ${releases} (${rate(f.consumerReleases, ns)}): ` +
+                    `1 value for ${Math.round(f.consumerReleases / Math.max(f.posted, 1))} releases`);
+            }
+        }
+        return out;
+    }
+}
