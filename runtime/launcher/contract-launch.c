@@ -522,6 +522,17 @@ static const char *rttime_note(int sig, const struct rusage *ru, char *buf, size
     return buf;
 }
 
+/* Who sends a SIGKILL the launcher did not: the kernel at a memory limit (its OOM killer), at the
+ * real-time mode's CPU bound only when there is one (a finite RLIMIT_RTTIME, inherited by the
+ * modules: the build service's real-time mode), or another process */
+static const char *sigkill_senders(void)
+{
+    struct rlimit rl;
+    int rt_bound = getrlimit(RLIMIT_RTTIME, &rl) == 0 && rl.rlim_max != RLIM_INFINITY;
+    return rt_bound ? "the kernel's at a memory limit or the real-time CPU bound, or another process's"
+                    : "the kernel's at a memory limit, or another process's";
+}
+
 /* A module that died without writing its CSV log (a SIGKILL, an _exit): the records it had logged
  * and not written are written now, from its log buffers (runtime/src/log_recover.c). */
 static void recover_log(const Child *c, pid_t pid)
@@ -1053,7 +1064,7 @@ int main(int argc, char *argv[])
         /* a SIGKILL is no crash of its code: said apart, with who sends one (the `died by signal 9`
          * line above says when; with a limit, the `stopping: ...` line says which) */
         if (children[k].killed)
-            say("FAILED: module %s was killed (a SIGKILL the launcher did not send: the kernel's at a memory limit or the real-time CPU bound, or another process's)", children[k].name);
+            say("FAILED: module %s was killed (a SIGKILL the launcher did not send: %s)", children[k].name, sigkill_senders());
         else
             say("FAILED: module %s crashed", children[k].name);
     }

@@ -95,11 +95,17 @@ describe('a module the memory limit killed (defect 7)', () => {
         expect(failureText(f!)).toBe("CTL was killed by the memory limit while the run stopped (signal 9: the kernel's OOM killer, which kills the process using the most memory)");
     });
 
-    it('without the memory limit hit (another limit, or none), a signal 9 the launcher did not send is told as a kill, not a crash', () => {
+    it('without the memory limit hit (another limit, or none), a signal 9 the launcher did not send is told as a kill, not a crash; the real-time CPU bound only in a real-time run', () => {
         for (const hit of [null, { name: 'processes' }]) {
-            const [f] = moduleFailures(lines, hit);
+            const [f] = moduleFailures(lines, hit, true);
             expect(f).toMatchObject({ module: 'CTL', how: 'died by signal 9 (Killed)', killedBy: 'sigkill' });
             expect(failureText(f!)).toBe("CTL was killed (a SIGKILL the launcher did not send: the kernel's at the real-time mode's CPU bound, or another process's)");
+            const [g] = moduleFailures(lines, hit);
+            expect(g).toMatchObject({ module: 'CTL', how: 'died by signal 9 (Killed)', killedBy: 'sigkill' });
+            expect(failureText(g!)).toBe("CTL was killed (a SIGKILL the launcher did not send: the kernel's at a memory limit, or another process's)");
+            const stuck = [{ kind: 'module-stuck', module: 'CTL', message: 'CTL has not finished release #6 after 100 periods: does its exec region set *stateindex = -1?' }];
+            expect(problemLines(stuck, [g!])).toEqual(["CTL has not finished release #6 after 100 periods: it was killed (a SIGKILL the launcher did not send: the kernel's at a memory limit, or another process's)"]);
+            expect(problemLines(stuck, [f!], true)).toEqual(["CTL has not finished release #6 after 100 periods: it was killed (a SIGKILL the launcher did not send: the kernel's at the real-time mode's CPU bound, or another process's)"]);
         }
     });
 

@@ -29,18 +29,28 @@ export function failureText(f: ModuleFailure): string {
 
 /** Why the kernel's OOM killer chose it, as `contract run` says it. */
 const OOM_KILL = "signal 9: the kernel's OOM killer, which kills the process using the most memory";
-/** Who sends a SIGKILL the launcher did not. */
-const OTHER_KILL = "a SIGKILL the launcher did not send: the kernel's at the real-time mode's CPU bound, or another process's";
+/**
+ * Who sends a SIGKILL the launcher did not: in a real-time run (`--realtime`), the kernel at the
+ * real-time mode's hard CPU bound (RLIMIT_RTTIME); in any run, another process, or the kernel's OOM
+ * killer at a memory limit (the run's own, when hit, is said apart: OOM_KILL). The launcher's own
+ * `FAILED: module M was killed (...)` line says the same from its RLIMIT_RTTIME.
+ */
+function otherKill(realtime: boolean): string {
+    return realtime
+        ? "a SIGKILL the launcher did not send: the kernel's at the real-time mode's CPU bound, or another process's"
+        : "a SIGKILL the launcher did not send: the kernel's at a memory limit, or another process's";
+}
 
 /**
  * Module failures reported by the launcher (`FAILED: module X crashed` or `... was killed (...)`,
  * with the preceding exit/signal line), read by the build service's reader of them (the failed
  * run's message names the same). A module killed (a SIGKILL the launcher did not send) in a run the
  * memory limit stopped (`limitHit`) was killed by that limit (the kernel's OOM killer): said so
- * (`killedBy`, `message`), `how` as the launcher said. A crashed module's `site`: the service's
+ * (`killedBy`, `message`), `how` as the launcher said; another one by whom, as the run's mode
+ * allows (`realtime`: the real-time mode's CPU bound). A crashed module's `site`: the service's
  * line that tells where it crashed (its crash report mapped to the code).
  */
-export function moduleFailures(lines: JobOutcome['runLines'], limitHit?: { name: string } | null): ModuleFailure[] {
+export function moduleFailures(lines: JobOutcome['runLines'], limitHit?: { name: string } | null, realtime = false): ModuleFailure[] {
     const crashes = new LauncherCrashes();
     const sites = new Map<string, string>();
     for (const { source, line } of lines) {
@@ -54,21 +64,23 @@ export function moduleFailures(lines: JobOutcome['runLines'], limitHit?: { name:
         const stopped = how.endsWith(' while the run stopped') ? ' while the run stopped' : '';
         return limitHit?.name === 'memory'
             ? { module, how, killedBy: 'memory-limit' as const, message: `${module} was killed by the memory limit${stopped} (${OOM_KILL})` }
-            : { module, how, killedBy: 'sigkill' as const, message: `${module} was killed${stopped} (${OTHER_KILL})` };
+            : { module, how, killedBy: 'sigkill' as const, message: `${module} was killed${stopped} (${otherKill(realtime)})` };
     });
 }
 
 
 /**
  * The run's problems as told: a module ORD declared stuck because it crashed is told as crashed,
- * without the advice to set `*stateindex = -1` (its code ended by a crash, not a loop).
+ * without the advice to set `*stateindex = -1` (its code ended by a crash, not a loop); one killed,
+ * by whom as the run's mode allows (`realtime`, as moduleFailures).
  */
-export function problemLines(issues: readonly { kind: string; module?: string; message: string }[], failures: readonly ModuleFailure[]): string[] {
+export function problemLines(issues: readonly { kind: string; module?: string; message: string }[], failures: readonly ModuleFailure[], realtime = false): string[] {
     const crashed = new Map(failures.map((f) => [f.module, f]));
     return issues.map((i) => {
         const f = i.kind === 'module-stuck' && i.module !== undefined ? crashed.get(i.module) : undefined;
         if (f === undefined) return i.message;
-        const why = f.killedBy === 'memory-limit' ? `it was killed by the memory limit (${OOM_KILL})` : f.killedBy === 'sigkill' ? `it was killed (${OTHER_KILL})` : `it crashed (${f.how})`;
+        const why = f.killedBy === 'memory-limit' ? `it was killed by the memory limit (${OOM_KILL})`
+            : f.killedBy === 'sigkill' ? `it was killed (${otherKill(realtime)})` : `it crashed (${f.how})`;
         return `${i.message.replace(STUCK_ADVICE, '')}: ${why}`;
     });
 }

@@ -331,13 +331,13 @@ export const runCommand: Command = {
         }
         const leftovers = artifacts?.runDirLeftovers ?? [];
         const leftOut = artifacts?.skipped ?? [];
-        const failures = moduleFailures(outcome.runLines, outcome.result.limitHit);
+        const failures = moduleFailures(outcome.runLines, outcome.result.limitHit, realtime);
         const schemas = opts.format !== 'json' ? null : teller && trace ? teller.schemaFigures() : await runSchemaFigures(logsDir, logs).catch(() => null);
         const extra = {
             logsDir: logs.length ? logsDir : null, logs, logsRefused: savedLogs.refused, previousLogs: savedLogs.movedAside,
             logsLeftOut: leftOut, moduleFailures: failures, runDirLeftovers: leftovers, trace, schemas, output: outcome.runLines,
         };
-        const problems = problemLines(outcome.result.issues ?? [], failures);
+        const problems = problemLines(outcome.result.issues ?? [], failures, realtime);
         const notSaved = savedLogs.refused.map((r) => `log ${r.replace(/: /, ' not written: ')}`);
         const code = reportBuild(opts, outcome, io, extra, problems, notSaved);
         if (opts.format === 'text') {
