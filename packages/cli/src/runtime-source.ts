@@ -8,12 +8,13 @@
 import { cpSync, existsSync, lstatSync } from 'node:fs';
 import { dirname, join, relative, resolve, sep } from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { RUNTIME_SOURCE_PARTS } from '@contract-studio/conventions';
 
 /** The runtime folder packed with the CLI (present in an installed tarball, absent in a checkout). */
 export const PACKED_RUNTIME = resolve(dirname(fileURLToPath(import.meta.url)), '..', 'runtime');
 
-/** What of runtime/ a user's build needs: what the tarball carries and `contract runtime-source` copies (its tests and benchmarks stay in the repository). */
-export const RUNTIME_PARTS = ['Makefile', 'build-config.mk', 'installed.mk', 'engines.mk', 'README.md', 'include', 'src', 'launcher', 'sim'] as const;
+/** What of runtime/ a user's build needs: what the tarball carries and `contract runtime-source` copies (its tests and benchmarks stay in the repository); the build cache keys the runtime by these alone. */
+export const RUNTIME_PARTS = RUNTIME_SOURCE_PARTS;
 
 /** The packed runtime when there is one, else `checkoutDefault` (the package's own default: the repository's runtime/). */
 export function defaultRuntimeSource(checkoutDefault: string): string {

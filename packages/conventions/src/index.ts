@@ -14,3 +14,4 @@ export * from './run-bounds.js';
 export * from './limit-option.js';
 export * from './stuck-advice.js';
 export * from './histogram-quantile.js';
+export * from './runtime-parts.js';

@@ -5,8 +5,8 @@
  * same bytes from any folder). So a project copied to a new folder, or built by the IDE after the
  * CLI, takes the generated src-gen from `<cache>/generated/<key>.json.gz` instead of loading the
  * model again (about 1.5 s for the tutorial). The key hashes the prepare digest of the inputs and
- * the generator's identity (every file of the language and codegen packages' dist/ folders: path,
- * size, mtime), so a rebuilt generator never serves an old tree.
+ * the generator's identity (every file of the language and codegen packages' dist/ folders:
+ * their paths inside dist/ and bytes), so a rebuilt generator never serves an old tree.
  *
  * Only trees generated on a stage that had no src-gen before the project was staged are stored
  * (what any fresh workspace would generate). The entries are written by the service alone, in the
@@ -16,9 +16,9 @@
  * least-recently-used.ts) and the temporary files of writers killed before their rename.
  */
 import { createHash, randomBytes } from 'node:crypto';
-import { promises as fsp, readdirSync, statSync } from 'node:fs';
+import { promises as fsp, readdirSync, readFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
-import { basename, dirname, join } from 'node:path';
+import { basename, dirname, join, relative } from 'node:path';
 import { removeStaleTemps } from '@contract-studio/codegen/stale-temp';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { gunzipSync, gzipSync } from 'node:zlib';
@@ -40,7 +40,11 @@ const MAX_ENTRY_BYTES = 32 * 1024 * 1024;
 
 let identity: string | undefined;
 
-/** The generator's identity: path, size and mtime of every file of the two packages' dist/. */
+/**
+ * The generator's identity: the path inside dist/ and the bytes of every file of the two packages'
+ * dist/ (not where they are nor their times: the CLI run from a checkout and the packed one share
+ * the generated trees; about 10 ms, once per process).
+ */
 export function generatorIdentity(): string {
   if (identity !== undefined) return identity;
   const hash = createHash('sha256');
@@ -60,8 +64,7 @@ export function generatorIdentity(): string {
         const p = join(d, e.name);
         if (e.isDirectory()) walk(p);
         else if (e.isFile() && !e.name.endsWith('.map')) {
-          const st = statSync(p);
-          hash.update(`${p}\0${st.size}\0${st.mtimeMs}\0`);
+          hash.update(`${spec}/${relative(dir, p)}\0`).update(readFileSync(p)).update('\0');
         }
       }
     };

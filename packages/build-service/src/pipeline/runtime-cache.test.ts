@@ -69,6 +69,29 @@ describe('RuntimeCache', () => {
     expect(await new RuntimeCache(source, cacheDir).ensure(log)).toBe(before);
   });
 
+  test('the key is the sources a build takes, not where they are: a checkout (with tests/, bench/) and the packed copy share it', async () => {
+    const checkout = join(scratch, 'checkout-runtime');
+    runtimeSources(checkout, 1);
+    mkdirSync(join(checkout, 'tests'), { recursive: true });
+    writeFileSync(join(checkout, 'tests', 'test_lib.c'), 'int main(void) { return 0; }\n');
+    mkdirSync(join(checkout, 'bench'), { recursive: true });
+    writeFileSync(join(checkout, 'bench', 'Makefile'), 'all:\n');
+    const packed = join(scratch, 'elsewhere', 'node_modules', 'cli', 'runtime');
+    runtimeSources(packed, 1);
+    const fromCheckout = await new RuntimeCache(checkout, cacheDir).sources();
+    const fromPacked = await new RuntimeCache(packed, cacheDir).sources();
+    expect(fromPacked.key).toBe(fromCheckout.key);
+    expect([...fromCheckout.contents.keys()].sort()).toEqual(['Makefile', 'src/launch.c', 'src/lib.c']);
+    // a built one is reused by the other
+    const built = await new RuntimeCache(checkout, cacheDir).ensure(log);
+    lines.length = 0;
+    expect(await new RuntimeCache(packed, cacheDir).ensure(log)).toBe(built);
+    expect(lines.join('\n')).not.toContain('building the runtime');
+    // a test's change is no change of the runtime
+    writeFileSync(join(checkout, 'tests', 'test_lib.c'), 'int main(void) { return 1; }\n');
+    expect((await new RuntimeCache(checkout, cacheDir).sources()).key).toBe(fromCheckout.key);
+  });
+
   test('a make that builds nothing (no build/libmodule.a) fails and is never cached as built', async () => {
     const empty = join(scratch, 'builds-nothing');
     mkdirSync(join(empty, 'include'), { recursive: true });

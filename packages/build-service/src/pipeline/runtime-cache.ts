@@ -14,6 +14,7 @@ import { createHash, randomBytes } from 'node:crypto';
 import { existsSync, promises as fsp } from 'node:fs';
 import { availableParallelism, machine } from 'node:os';
 import { join } from 'node:path';
+import { isRuntimeSourcePart } from '@contract-studio/conventions';
 import { removeAbandonedBuilds } from '../cache/abandoned-builds.js';
 import { markUsed, removeLeastRecentlyUsed } from '../cache/least-recently-used.js';
 import { SERVICE_BOUNDS } from '../limits.js';
@@ -54,9 +55,14 @@ export function installedRuntimeProblem(dir: string, named: string): string | un
   return `${named} names an installed runtime, which has no sources (no src/ beside its build/): contract build builds the runtime from its sources, for the compiler it uses; unset it, or name a runtime source folder (the runtime/ of ContrACT Studio, or one that contract runtime-source DIR copies)`;
 }
 
-/** The runtime's sources: what make needs (test outputs, CSV logs, objects are left out). */
+/**
+ * The runtime's sources: what make needs, in the parts a user's build takes (RUNTIME_SOURCE_PARTS:
+ * a checkout's runtime/ and the packed CLI's give the same key; tests, benchmarks, test outputs,
+ * CSV logs, objects are left out).
+ */
 const SOURCE = /(\.(c|h|mk|def|S|sh)|(^|\/)Makefile)$/;
 const SKIP_DIRS = /^(build|logs|run)$|(^|\/)\.git$/;
+const isRuntimeSource = (rel: string, isDir: boolean): boolean => isRuntimeSourcePart(rel) && (isDir ? !SKIP_DIRS.test(rel) : SOURCE.test(rel));
 
 /** A runtime's sources read once: their key, the name of their folder in the cache, the files. */
 export interface RuntimeSources {
@@ -104,7 +110,7 @@ export class RuntimeCache {
     }
     const installed = installedRuntimeProblem(this.sourceDir, `the runtime folder ${this.sourceDir}`);
     if (installed) throw new Error(installed);
-    const files = await listFilesNoFollow(this.sourceDir, (rel, isDir) => (isDir ? !SKIP_DIRS.test(rel) : SOURCE.test(rel)));
+    const files = await listFilesNoFollow(this.sourceDir, isRuntimeSource);
     const hash = createHash('sha256').update(toolchainIdentity()).update('\0');
     const contents = new Map<string, Buffer>();
     for (const f of files) {

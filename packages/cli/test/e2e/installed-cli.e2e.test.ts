@@ -94,6 +94,17 @@ describe('the packed CLI, installed as users install it', () => {
         const built = contract(['build', 'robot', '--sandbox', 'bwrap']);
         expect(built.status, built.out).toBe(0);
         expect(readdirSync(join(root, 'cache')).some((n) => n === 'runtime')).toBe(true); // built into the cache, not in place
+        // the CLI of the checkout, on the same cache, builds nothing again: the runtime is keyed by its
+        // sources and the toolchain, the generated tree by the generator's bytes, not by where either lives
+        const runtimes = readdirSync(join(root, 'cache', 'runtime')).filter((n) => n.startsWith('runtime-'));
+        expect(runtimes).toHaveLength(1);
+        const fromCheckout = spawnSync(process.execPath, [join(REPO, 'packages/cli/bin/contract.js'), 'build', 'robot', '--sandbox', 'bwrap', '--verbose'], { cwd: work, encoding: 'utf8', timeout: 300_000, env });
+        const checkoutOut = `${fromCheckout.stdout}${fromCheckout.stderr}`;
+        expect(fromCheckout.status, checkoutOut).toBe(0);
+        expect(checkoutOut).toContain(`${runtimes[0]!.slice('runtime-'.length)} (`);
+        expect(checkoutOut).not.toContain('building the runtime');
+        expect(checkoutOut).toMatch(/project unchanged since the last build: generation skipped|generated tree taken from the build cache/);
+        expect(readdirSync(join(root, 'cache', 'runtime')).filter((n) => n.startsWith('runtime-'))).toEqual(runtimes);
         const ran = contract(['run', 'robot', '--sandbox', 'bwrap', '--duration', '2s']);
         expect(ran.status, ran.out).toBe(0);
 
