@@ -105,7 +105,7 @@ export function generateControlMakefile(name: string, deps: CommonHeaderDependen
         .PHONY: all clean
         all: control${name}
 
-        control${name}: makecontrol${name} control${name}.c $(OWN_FILES) ${commonHeaderPrerequisites('../common')} $(CONTRACT_LIB)
+        control${name}: makecontrol${name} control${name}.c $(OWN_FILES) ${commonHeaderPrerequisites('../common', deps)} $(CONTRACT_LIB)
         	$(CC) $(CPPFLAGS) $(CFLAGS) -o $@ control${name}.c $(LDLIBS)
 
         clean:

@@ -1,15 +1,14 @@
 import { posix } from 'node:path';
 import { architecturePath } from '@contract-studio/conventions';
 import type { GeneratedFile } from '../writer/write-tree.js';
-import { commonFiles, includedFiles, type TreeText } from './header-dependencies.js';
+import { commonFiles, hasComputedInclude, includedFiles, type TreeText } from './header-dependencies.js';
 
 /** The generated tree's common/ folder (the shared headers). */
 export const COMMON_DIR = architecturePath('common');
 
 /**
- * The headers of common/ an executable's Makefile makes it depend on: the generated ones its
- * sources include (undefined: unknown, every header of common/), and every generated one (a header
- * of common/ that is not among them is a user's: a dependency of every executable).
+ * The files of common/ an executable's Makefile makes it depend on: those its sources include,
+ * generated or yours (undefined: unknown, every header of common/), and every generated one.
  */
 export interface CommonHeaderDependencies {
     included: string[] | undefined;
@@ -20,6 +19,12 @@ export interface CommonHeaderDependencies {
      * which its executable depends on (rebuilt: the compiler then says the file is missing).
      */
     own?: string[] | undefined;
+    /**
+     * Its sources, or a file they include, have an `#include` the generator cannot follow (a macro
+     * name): every file of your own at common/'s top is then a dependency too (one too many, never
+     * one too few).
+     */
+    unfollowed?: boolean;
 }
 
 /**
@@ -35,7 +40,7 @@ export function commonHeaderVariables(common: string, deps: CommonHeaderDependen
             ? `# the files of ${common} this executable includes: named by its sources (protected regions too) or by the files they include`
             : `# a file could not be read when this Makefile was generated: every header of ${common}`,
         variable('COMMON_HEADERS', deps.included !== undefined ? names(deps.included) : [`$(notdir $(wildcard ${common}/*.h))`]),
-        `# the headers the generator writes in ${common}; any other .h, .c or .inc there (yours) is a dependency of every executable`,
+        `# the headers the generator writes in ${common}`,
         variable('GENERATED_COMMON_HEADERS', names(deps.generated)),
         '# the files of this folder the sources include (one removed changes this Makefile, which the executable depends on)',
         variable('OWN_FILES', deps.own ?? []),
@@ -43,12 +48,16 @@ export function commonHeaderVariables(common: string, deps: CommonHeaderDependen
 }
 
 /**
- * The prerequisites of an executable on common/: the files it includes, and the C files of your own
- * there (`.h`, `.c`, `.inc`: one added since the generation, or included by a way the generator
- * cannot follow, rebuilds every executable: a dependency too many, never one too few).
+ * The prerequisites of an executable on common/: the files it includes, found by the generator in
+ * the tree as written (a file of yours included since is found at the next generation, which
+ * `contract build` makes first). When the generator could not follow every include (a file it
+ * could not read, an `#include` of a macro name), also every `.h`, `.c` and `.inc` of your own at
+ * common/'s top: a dependency too many, never one too few.
  */
-export function commonHeaderPrerequisites(common: string): string {
-    return `$(addprefix ${common}/,$(COMMON_HEADERS)) $(filter-out $(addprefix ${common}/,$(GENERATED_COMMON_HEADERS)),$(wildcard ${common}/*.h ${common}/*.c ${common}/*.inc))`;
+export function commonHeaderPrerequisites(common: string, deps: CommonHeaderDependencies): string {
+    const included = `$(addprefix ${common}/,$(COMMON_HEADERS))`;
+    if (deps.included !== undefined && !deps.unfollowed) return included;
+    return `${included} $(filter-out $(addprefix ${common}/,$(GENERATED_COMMON_HEADERS)),$(wildcard ${common}/*.h ${common}/*.c ${common}/*.inc))`;
 }
 
 /** An executable's Makefile to generate: at `path`, compiling `sources` (tree paths) in `own` (its folder). */
@@ -78,6 +87,7 @@ export function executableMakefiles(makefiles: readonly ExecutableMakefile[], fi
                 included: files && commonFiles(files, generatedSet, COMMON_DIR),
                 generated,
                 own: files?.filter((p) => posix.dirname(p) === own).map((p) => posix.basename(p)),
+                unfollowed: files !== undefined && [...sources, ...files].some((p) => hasComputedInclude(textOf(p) ?? '')),
             });
         };
         let content: string | undefined;

@@ -24,6 +24,13 @@ export function includeLines(text: string): IncludeLine[] {
     return [...text.matchAll(INCLUDE)].map((m) => (m[1] !== undefined ? { name: m[1], quoted: true } : { name: m[2]!, quoted: false }));
 }
 
+const COMPUTED_INCLUDE = /^[ \t]*#[ \t]*include[ \t]*[^"<\s]/m;
+
+/** Whether `text` has an `#include` whose name is a macro (`#include HELPER_H`): one the generator cannot follow. */
+export function hasComputedInclude(text: string): boolean {
+    return COMPUTED_INCLUDE.test(text);
+}
+
 /** Where an executable's compilation looks for headers (tree paths): its own folder (`-I.`) and common/ (`-I<common>`). */
 export interface IncludeFolders {
     own: string;

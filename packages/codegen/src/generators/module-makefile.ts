@@ -27,7 +27,7 @@ export function generateModuleMakefile(name: string, sources: string[], deps: Co
         .PHONY: all clean
         all: ${name}
 
-        ${name}: Makefile $(SOURCES) $(OWN_FILES) $(wildcard *.h *.c *.inc) ${commonHeaderPrerequisites('../../common')} $(CONTRACT_LIB)
+        ${name}: Makefile $(SOURCES) $(OWN_FILES) $(wildcard *.h *.c *.inc) ${commonHeaderPrerequisites('../../common', deps)} $(CONTRACT_LIB)
         	$(CC) $(CPPFLAGS) $(CFLAGS) -o $@ $(SOURCES) $(LDLIBS)
 
         clean:
