@@ -32,9 +32,17 @@ export interface Manifest {
      * path -> the IDs of its protected regions that held something else than their default (user
      * code) when the generator last wrote or kept the file; only files with such regions are
      * listed. Tells that a generated file now missing held code (deleted by hand): the generation
-     * says so, and how to get it back. Optional, as above.
+     * says so, and how to get it back. Written always (`{}` when no file holds code): a manifest
+     * without it is of an older version, which does not tell.
      */
     userCode?: Record<string, string[]>;
+    /**
+     * path -> the IDs of the protected regions whose code was lost when the file was deleted and
+     * generated anew with the defaults (or, the manifest before being of an older version, that
+     * may have held code): every generation and build says so again until one of them holds code
+     * again (the file restored, or code written there) or the file is generated no more.
+     */
+    lostUserCode?: Record<string, string[]>;
 }
 
 /** A loaded manifest: only entries whose path passed the checks (safe-paths.ts). */
@@ -47,6 +55,10 @@ export interface LoadedManifest {
     skeletonLines: Map<string, string>;
     /** path -> the region IDs that held user code (Manifest.userCode), for the paths of `files` that have a well-formed list. */
     userCode: Map<string, string[]>;
+    /** Whether the manifest records userCode at all (false: of an older version, which cannot tell a file that held none). */
+    recordsUserCode: boolean;
+    /** path -> the region IDs whose code a deletion lost (Manifest.lostUserCode), for the paths of `files` that have a well-formed list. */
+    lostUserCode: Map<string, string[]>;
 }
 
 export function hashContent(content: string): string {
@@ -197,14 +209,21 @@ export function loadManifest(tree: OutputTree): ManifestLoad {
             }
         }
     }
-    const userCode = new Map<string, string[]>();
     const held = (data as { userCode?: unknown }).userCode;
-    if (typeof held === 'object' && held !== null && !Array.isArray(held)) {
-        for (const [path, ids] of Object.entries(held)) {
-            if (files.has(path) && Array.isArray(ids) && ids.length <= MAX_USER_CODE_REGIONS && ids.every((id) => typeof id === 'string' && REGION_ID.test(id))) userCode.set(path, ids as string[]);
-        }
+    const userCode = regionLists(held, files);
+    const lostUserCode = regionLists((data as { lostUserCode?: unknown }).lostUserCode, files);
+    const recordsUserCode = typeof held === 'object' && held !== null && !Array.isArray(held);
+    return { manifest: { files, skeletons, skeletonLines: skeletonLineTable, userCode, recordsUserCode, lostUserCode }, problems };
+}
+
+/** A manifest's path -> region IDs table (userCode, lostUserCode): only paths of `files` with a well-formed list; anything else is ignored. */
+function regionLists(value: unknown, files: ReadonlyMap<string, unknown>): Map<string, string[]> {
+    const lists = new Map<string, string[]>();
+    if (typeof value !== 'object' || value === null || Array.isArray(value)) return lists;
+    for (const [path, ids] of Object.entries(value)) {
+        if (files.has(path) && Array.isArray(ids) && ids.length <= MAX_USER_CODE_REGIONS && ids.every((id) => typeof id === 'string' && REGION_ID.test(id))) lists.set(path, ids as string[]);
     }
-    return { manifest: { files, skeletons, skeletonLines: skeletonLineTable, userCode }, problems };
+    return lists;
 }
 
 /**
@@ -237,8 +256,12 @@ export function regionsHoldingCode(text: string, file: string, defaults: Record<
     return parseRegions(text, file).regions.filter((r) => defaults[r.id] !== undefined && defaults[r.id] !== hashContent(r.content)).map((r) => r.id);
 }
 
-/** Deterministic JSON text of a manifest (sorted paths); skeleton hashes, line hashes and the regions holding user code only for listed files (the last only when some file has such regions). */
-export function serialiseManifest(files: Map<string, Record<string, string>>, skeletons?: Map<string, string>, skeletonLineTable?: Map<string, string>, userCode?: Map<string, string[]>): string {
+/**
+ * Deterministic JSON text of a manifest (sorted paths); skeleton hashes, line hashes and the regions
+ * holding user code only for listed files (userCode whenever given, `{}` when none; lostUserCode
+ * only when some file has lost code).
+ */
+export function serialiseManifest(files: Map<string, Record<string, string>>, skeletons?: Map<string, string>, skeletonLineTable?: Map<string, string>, userCode?: Map<string, string[]>, lostUserCode?: Map<string, string[]>): string {
     const sorted: Record<string, Record<string, string>> = {};
     const paths = [...files.keys()].sort();
     for (const path of paths) sorted[path] = files.get(path)!;
@@ -259,8 +282,10 @@ export function serialiseManifest(files: Map<string, Record<string, string>>, sk
         }
         manifest.skeletonLines = sortedLines;
     }
-    const held = paths.filter((path) => (userCode?.get(path)?.length ?? 0) > 0);
-    if (held.length > 0) manifest.userCode = Object.fromEntries(held.map((path) => [path, userCode!.get(path)!]));
+    const listed = (table: Map<string, string[]>) => Object.fromEntries(paths.filter((path) => (table.get(path)?.length ?? 0) > 0).map((path) => [path, table.get(path)!]));
+    if (userCode) manifest.userCode = listed(userCode);
+    const lost = lostUserCode && listed(lostUserCode);
+    if (lost && Object.keys(lost).length > 0) manifest.lostUserCode = lost;
     return JSON.stringify(manifest, null, 1) + '\n';
 }
 

@@ -229,10 +229,13 @@ function carryManifest(tree: OutputTree, loaded: ManifestLoad, { from, to, renam
     const skeletons = new Map<string, string>();
     const lineTable = new Map<string, string>();
     const userCode = new Map<string, string[]>();
+    const lostUserCode = new Map<string, string[]>();
     for (const [path, regions] of loaded.manifest.files) {
         const moved = movePath(path);
         const held = loaded.manifest.userCode.get(path);
         if (held) userCode.set(moved, held.map(renameId));
+        const lost = loaded.manifest.lostUserCode.get(path);
+        if (lost) lostUserCode.set(moved, lost.map(renameId));
         const carry = carries.get(moved);
         const ids: Record<string, string> = {};
         for (const [id, hash] of Object.entries(regions)) {
@@ -255,7 +258,7 @@ function carryManifest(tree: OutputTree, loaded: ManifestLoad, { from, to, renam
         if (lines !== undefined) lineTable.set(moved, lines);
     }
     // in the line-ending style of the manifest it replaces (a CRLF checkout's stays CRLF), as generate writes it
-    tree.write(MANIFEST_NAME, Buffer.from(manifestTextLike(tree.read(MANIFEST_NAME), serialiseManifest(files, skeletons, lineTable, userCode)), 'utf8'));
+    tree.write(MANIFEST_NAME, Buffer.from(manifestTextLike(tree.read(MANIFEST_NAME), serialiseManifest(files, skeletons, lineTable, loaded.manifest.recordsUserCode ? userCode : undefined, lostUserCode)), 'utf8'));
 }
 
 /**

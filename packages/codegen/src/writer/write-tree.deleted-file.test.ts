@@ -2,9 +2,11 @@
  * A generated file deleted by hand while its protected regions held code (docs/codegen.md,
  * "A generated file deleted"): the manifest records which regions of each file held code
  * (userCode), so the next generation says that the file, generated anew with the defaults, lost
- * that code, and how to get it back; a build says it too, as a warning (it does not fail).
+ * that code, and how to get it back; a build says it too, as a warning (it does not fail). Every
+ * later generation and build says it again (lostUserCode) until one of the regions holds code; a
+ * manifest of an older version (no userCode) makes the first command say the file may have held code.
  */
-import { mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { cpSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
 import { region } from '../regions/markers.js';
@@ -22,6 +24,7 @@ const module = (name: string): GeneratedFile => ({
 const NAV = 'generated/architecture/modules/NAV_mod/module.c';
 const read = (dir: string, p: string) => readFileSync(join(dir, p), 'utf8');
 const userCode = (dir: string) => (JSON.parse(read(dir, MANIFEST_NAME)) as { userCode?: Record<string, string[]> }).userCode;
+const lostUserCode = (dir: string) => (JSON.parse(read(dir, MANIFEST_NAME)) as { lostUserCode?: Record<string, string[]> }).lostUserCode;
 
 /** A tree of NAV and LOC whose NAV exec region holds code, generated twice (the manifest records it). */
 function withCode(): string {
@@ -34,7 +37,7 @@ function withCode(): string {
 }
 
 describe('writeTree: a generated file deleted while its regions held code', () => {
-    it('the manifest records the regions holding code; the file, generated anew, is a warning naming them and how to get the code back (once)', () => {
+    it('the manifest records the regions holding code; the file, generated anew, is a warning naming them and how to get the code back, at every generation until the code is back', () => {
         const dir = withCode();
         expect(userCode(dir)).toEqual({ [NAV]: ['protect_exec_NAV'] });
         rmSync(join(dir, NAV));
@@ -45,9 +48,41 @@ describe('writeTree: a generated file deleted while its regions held code', () =
             message: `was not there (deleted?), though its protected region(s) protect_exec_NAV held code when it was last generated: generated anew with the defaults, without that code. To get it back, restore the file (\`git checkout -- src-gen/${NAV}\` in the project folder, or \`git restore\`) and generate again`,
         }]);
         expect(read(dir, NAV)).toBe(module('NAV').content);
-        // said once: the manifest now records the file as generated
-        expect(userCode(dir)).toBeUndefined();
+        // the manifest records the loss: the next generation, and a build, say it again
+        expect(userCode(dir)).toEqual({});
+        expect(lostUserCode(dir)).toEqual({ [NAV]: ['protect_exec_NAV'] });
+        for (const options of [{}, { displacedCode: 'refuse' as const }]) {
+            expect(writeTree(dir, [module('LOC'), module('NAV')], options).warnings).toEqual([{
+                file: NAV,
+                message: expect.stringMatching(/^its protected region\(s\) protect_exec_NAV hold only their defaults since the file was deleted and generated anew .*if you do not want it back, write anything \(a comment\) in one of them to stop this warning$/),
+            }]);
+        }
+        // the code back (restored, or written anew): said no more
+        writeFileSync(join(dir, NAV), read(dir, NAV).replace(/(protect_exec_NAV\) ENABLED START\*\/)\n\/\/TODO\n/, '$1\n// rewritten later\n'));
         expect(writeTree(dir, [module('LOC'), module('NAV')]).warnings).toEqual([]);
+        expect(lostUserCode(dir)).toBeUndefined();
+        expect(writeTree(dir, [module('LOC'), module('NAV')]).warnings).toEqual([]);
+    });
+
+    it('a manifest of an older version (no userCode record): the first command says the deleted file may have held code, and so does the next until one of its regions holds code', () => {
+        const dir = withCode();
+        const manifest = JSON.parse(read(dir, MANIFEST_NAME)) as Record<string, unknown>;
+        delete manifest.userCode;
+        writeFileSync(join(dir, MANIFEST_NAME), JSON.stringify(manifest));
+        rmSync(join(dir, NAV));
+        // a build first (in its copy of the project), then generate: both say it
+        const buildCopy = out();
+        cpSync(dir, buildCopy, { recursive: true });
+        for (const [into, options] of [[buildCopy, { displacedCode: 'refuse' as const }], [dir, {}]] as const) {
+            expect(writeTree(into, [module('LOC'), module('NAV')], options).warnings).toEqual([{
+                file: NAV,
+                message: expect.stringMatching(/^was not there \(deleted\?\), and the manifest, written by an older version of ContrACT Studio, does not record whether its protected region\(s\) protect_vars_NAV, protect_exec_NAV held code: generated anew with the defaults\. If they held code, restore the file/),
+            }]);
+        }
+        expect(lostUserCode(dir)).toEqual({ [NAV]: ['protect_vars_NAV', 'protect_exec_NAV'] });
+        expect(writeTree(dir, [module('LOC'), module('NAV')]).warnings).toHaveLength(1);
+        // a file still there, of an older manifest: nothing to say
+        expect(writeTree(dir, [module('LOC'), module('NAV')]).warnings.filter((w) => w.file !== NAV)).toEqual([]);
     });
 
     it('a build says it too, as a warning (it does not fail); an orphaned copy of the file is named', () => {

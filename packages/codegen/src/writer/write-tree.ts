@@ -7,7 +7,7 @@ import { RegionSyntaxError } from '../regions/region-error.js';
 import { bytesOf, toByteString } from './byte-string.js';
 import { blankLines, decodeLineHashes, describeEdits, editsOutside, regionLineHashes, runsText, skeletonLines } from './skeleton-lines.js';
 import { linesNotRegenerated } from './outside-regions.js';
-import { CONFLICTED, MANIFEST_NAME, fileRecord, hasCrlfEndings, hashContent, loadManifest, looksLikeDefault, mergedDefaults, manifestTextLike, regionsHoldingCode, serialiseManifest, skeletonHash, unreadableManifestAdvice, type ManifestLoad } from './manifest.js';
+import { CONFLICTED, MANIFEST_NAME, fileRecord, hasCrlfEndings, hashContent, loadManifest, looksLikeDefault, mergedDefaults, manifestTextLike, regionsHoldingCode, serialiseManifest, skeletonHash, unreadableManifestAdvice, type LoadedManifest, type ManifestLoad } from './manifest.js';
 import { ORPHANS_DIR, existingOrphans, fileOrphanText, regionOrphanText, writeOrphan } from './orphans.js';
 import { OutputTree } from './output-tree.js';
 import { emptyReport, type GenerationReport } from './report.js';
@@ -211,6 +211,19 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     const newSkeletonLines = new Map<string, string>();
     /** path -> the IDs of its regions holding user code as written or kept by this generation (Manifest.userCode). */
     const newUserCode = new Map<string, string[]>();
+    /** path -> the IDs of its regions whose code a deletion lost, still said (Manifest.lostUserCode). */
+    const newLostUserCode = new Map<string, string[]>();
+    /**
+     * A file whose regions' code a deletion lost (the manifest's lostUserCode) and that now holds
+     * code in none of them (`heldNow`): said again, and kept in the record; one holding code there
+     * again (restored, or written anew) drops the record.
+     */
+    const sayStillLost = (path: string, heldNow: readonly string[]) => {
+        const lost = loaded.manifest?.lostUserCode.get(path);
+        if (!lost || lost.some((id) => heldNow.includes(id))) return;
+        newLostUserCode.set(path, lost);
+        report.warnings.push({ file: path, message: stillLostUserCode(path, lost) });
+    };
     /** The skeleton hash recorded when the file was last written (undefined: no manifest, an older or unreadable one). */
     const recordedSkeleton = (p: string) => loaded.manifest?.skeletons.get(p);
     /** Why a file has no recorded skeleton, as a clause. */
@@ -233,6 +246,9 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         const held = loaded.manifest?.userCode.get(path);
         if (held !== undefined) newUserCode.set(path, held);
         else newUserCode.delete(path);
+        const lost = loaded.manifest?.lostUserCode.get(path);
+        if (lost !== undefined) newLostUserCode.set(path, lost);
+        else newLostUserCode.delete(path);
     };
     /** No manifest there at all (not an unreadable or older one): a tree of another version or tool, or one whose manifest was deleted. */
     const noManifestAtAll = !loaded.manifest && unreadable === undefined && !manifestRefused;
@@ -327,8 +343,11 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             let existing = readExisting(file.path);
             if (existing === undefined) {
                 const text = carriedIn ? fillRegions(generated, file.path, carriedIn) : generated;
-                const lost = deletedUserCode(tree, file.path, loaded.manifest?.userCode.get(file.path), carriedIn);
-                if (lost) report.warnings.push({ file: file.path, message: lost });
+                const lost = deletedUserCode(tree, file.path, loaded.manifest, carriedIn);
+                if (lost) {
+                    report.warnings.push({ file: file.path, message: lost.message });
+                    newLostUserCode.set(file.path, lost.regions);
+                }
                 tree.write(file.path, bytesOf(text));
                 onDisk.set(file.path, text);
                 if (carriedIn) newUserCode.set(file.path, regionsHoldingCode(text, file.path, record.defaults));
@@ -339,6 +358,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             onDisk.set(file.path, existing); // until it is rewritten below
             if (existing === generated && !carriedIn) {
                 // identical to the fresh output: nothing to merge (every region holds the default)
+                sayStillLost(file.path, []);
                 report.unchanged.push(file.path);
                 continue;
             }
@@ -463,6 +483,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             newManifest.set(file.path, defaults);
             const held = merged.text === generated ? [] : regionsHoldingCode(merged.text, file.path, defaults);
             if (held.length > 0) newUserCode.set(file.path, held);
+            sayStillLost(file.path, held);
             if (merged.text === original) {
                 report.unchanged.push(file.path);
             } else {
@@ -536,7 +557,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         try {
             const previous = tree.read(MANIFEST_NAME);
             // a CRLF checkout's manifest keeps its line endings (as the C files do): not rewritten for them alone
-            const manifestText = manifestTextLike(previous, serialiseManifest(newManifest, newSkeletons, newSkeletonLines, newUserCode));
+            const manifestText = manifestTextLike(previous, serialiseManifest(newManifest, newSkeletons, newSkeletonLines, newUserCode, newLostUserCode));
             if (previous !== manifestText) {
                 tree.write(MANIFEST_NAME, Buffer.from(manifestText, 'utf8'));
                 report.filesWritten++;
@@ -567,17 +588,36 @@ function unrecordedTreeSummary(copies: readonly string[]): string {
 }
 
 /**
- * What to say of generated file `path`, missing from the tree (deleted by hand?) though the
- * manifest recorded that its regions `held` code when it was last generated (Manifest.userCode),
- * but those whose code comes back from another file (`carriedIn`): it is generated with the
- * defaults, and the warning names the regions and how to get the code back. Undefined when none held code.
+ * What to say of generated file `path`, missing from the tree (deleted by hand?) though `manifest`
+ * recorded that its regions held code when it was last generated (Manifest.userCode), or that a
+ * deletion lost their code before (lostUserCode), or, a manifest of an older version that does not
+ * tell (no userCode), listed it with regions: it is generated with the defaults, and the warning
+ * names the regions (but those whose code comes back from another file, `carriedIn`) and how to
+ * get the code back. The regions are recorded as lost (lostUserCode): every later generation and
+ * build says it again until one holds code again. Undefined when none held code.
  */
-function deletedUserCode(tree: OutputTree, path: string, held: readonly string[] | undefined, carriedIn: ReadonlyMap<string, string> | undefined): string | undefined {
-    const lost = (held ?? []).filter((id) => !carriedIn?.has(id));
-    if (lost.length === 0) return undefined;
+function deletedUserCode(tree: OutputTree, path: string, manifest: LoadedManifest | undefined, carriedIn: ReadonlyMap<string, string> | undefined): { message: string; regions: string[] } | undefined {
+    if (!manifest) return undefined;
+    const notCarried = (ids: readonly string[]) => ids.filter((id) => !carriedIn?.has(id));
+    const known = notCarried([...new Set([...(manifest.userCode.get(path) ?? []), ...(manifest.lostUserCode.get(path) ?? [])])]);
     const copies = existingOrphans(tree, path);
     const copy = copies.length > 0 ? `; a copy of it orphaned earlier is in ${copies[copies.length - 1]}` : '';
-    return `was not there (deleted?), though its protected region(s) ${lost.join(', ')} held code when it was last generated: generated anew with the defaults, without that code. To get it back, restore the file (\`git checkout -- ${SRC_GEN_DIR}/${path}\` in the project folder, or \`git restore\`) and generate again${copy}`;
+    const restore = `restore the file (\`git checkout -- ${SRC_GEN_DIR}/${path}\` in the project folder, or \`git restore\`) and generate again`;
+    if (known.length > 0) {
+        return { regions: known, message: `was not there (deleted?), though its protected region(s) ${known.join(', ')} held code when it was last generated: generated anew with the defaults, without that code. To get it back, ${restore}${copy}` };
+    }
+    if (manifest.recordsUserCode) return undefined;
+    const unknown = notCarried(Object.keys(manifest.files.get(path) ?? {}));
+    if (unknown.length === 0) return undefined;
+    return {
+        regions: unknown,
+        message: `was not there (deleted?), and the manifest, written by an older version of ContrACT Studio, does not record whether its protected region(s) ${unknown.join(', ')} held code: generated anew with the defaults. If they held code, ${restore}${copy}; if not, write anything (a comment) in one of them to stop this warning`,
+    };
+}
+
+/** What to say of generated file `path` whose regions `lost` (Manifest.lostUserCode) still hold only their defaults. */
+function stillLostUserCode(path: string, lost: readonly string[]): string {
+    return `its protected region(s) ${lost.join(', ')} hold only their defaults since the file was deleted and generated anew (their code, or what they may have held, is in neither the file nor the build). To get it back, restore the file as it was before it was deleted (\`git log -- ${SRC_GEN_DIR}/${path}\`, then \`git checkout <commit> -- ${SRC_GEN_DIR}/${path}\` in the project folder) and generate again; if you do not want it back, write anything (a comment) in one of them to stop this warning`;
 }
 
 function recordFailure(report: GenerationReport, refusals: Refusals, path: string, e: unknown, consequence: string): void {
