@@ -48,6 +48,8 @@ const benches = [
   { part: 'simulate-panel', cmd: ['npm', 'run', '-s', 'bench:simulate-panel', '-w', 'packages/web-ide'] },
   // 10 minutes of the mobile-robot example, every CSV record counted (SOAK_SECONDS to change it)
   { part: 'soak', cmd: ['npm', 'run', '-s', 'bench:soak', '-w', 'packages/build-service'] },
+  // a cancel under 8 concurrent runs of mobile-robot 30 s in (cancel -> processes ended -> logs collected -> job ended), and of a launcher that ignores SIGTERM (about 3 min)
+  { part: 'cancel', cmd: ['npm', 'run', '-s', 'bench:cancel', '-w', 'packages/build-service'] },
 ];
 
 const only = process.argv.slice(2);
