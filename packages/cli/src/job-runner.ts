@@ -68,6 +68,7 @@ export function parseLimitOptions(parsed: ParsedArgs): LimitOptions | undefined 
     return out;
 }
 export const COMMON_USAGE = [
+    '  DIR: the project\'s root, as for contract generate (docs/codegen.md "Where a project is"): its src-gen/ is the tree built',
     '  --sandbox: auto (default: bwrap when it works, else docker), bwrap, docker, none (no isolation)',
     '  --format: text (default) or json (one JSON object on stdout at the end, no progress)',
     '  --runtime: the runtime source folder (default: $CONTRACT_RUNTIME, else the one inside the installed CLI or the repository\'s runtime/)',

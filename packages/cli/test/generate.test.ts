@@ -69,6 +69,31 @@ describe('contract generate', () => {
         expect(readdirSync(join(scratch, 'repo'))).toEqual(['robot']);
     }, 60_000);
 
+    it('the Eclipse layout (DIR/src/*.contract, DIR/src-gen/): DIR is the project; a second tree DIR/src/src-gen is said and not used', async () => {
+        sources(join(scratch, 'oldproj', 'src'));
+        const first = capture(scratch);
+        expect(await runCli(['generate', 'oldproj'], first)).toBe(0);
+        expect(first.stderr).not.toContain('second generated tree');
+        expect(existsSync(join(scratch, 'oldproj', 'src-gen', '.contract-manifest.json'))).toBe(true);
+        // the tree the IDE used to make beside it (defaults only)
+        cpSync(join(scratch, 'oldproj', 'src-gen'), join(scratch, 'oldproj', 'src', 'src-gen'), { recursive: true });
+        const again = capture(scratch);
+        expect(await runCli(['generate', 'oldproj'], again)).toBe(0);
+        expect(again.stderr).toContain('warning: oldproj/src/src-gen/ is a second generated tree of this project, not used: the project is oldproj and its tree oldproj/src-gen/ (the outermost folder holding a src-gen/ is the project; docs/codegen.md "Where a project is"): move any code of yours out of oldproj/src/src-gen/, then delete it\n');
+        expect(again.stderr).toContain('generated oldproj/src-gen: 0 created');
+    }, 60_000);
+
+    it('refuses a folder of several projects (examples/), naming them; one of them generates', async () => {
+        sources(join(scratch, 'several', 'a'));
+        sources(join(scratch, 'several', 'b', 'src'));
+        const io = capture(scratch);
+        expect(await runCli(['generate', 'several'], io)).toBe(1);
+        expect(io.stderr).toBe('several holds several projects (a/, b/): generate one of them (contract generate several/a), or name the output with -o OUT; nothing was generated\n');
+        expect(readdirSync(join(scratch, 'several')).sort()).toEqual(['a', 'b']);
+        expect(await runCli(['generate', 'several/b'], capture(scratch))).toBe(0);
+        expect(existsSync(join(scratch, 'several', 'b', 'src-gen', 'generated', 'architecture', 'Makefile'))).toBe(true);
+    }, 60_000);
+
     it('waits for another writer of the tree (its lock held), saying for whom, then generates', async () => {
         sources(join(scratch, 'locked'));
         expect(await runCli(['generate', 'locked'], capture(scratch))).toBe(0);

@@ -4,6 +4,7 @@
  * one parser, the writing of a time literal and of untrusted text as it reads (visibleText) (docs/architecture.md "Shared conventions").
  */
 export * from './layout.js';
+export * from './project-root.js';
 export * from './sandbox.js';
 export * from './regions.js';
 export * from './conflict-markers.js';

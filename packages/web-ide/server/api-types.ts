@@ -31,6 +31,8 @@ export type GenerateReport = GenerationReport;
 /** The answer of POST /api/generate: the report, the workspace-relative src-gen folder and the time taken. */
 export interface GenerateResponse extends GenerateReport {
   srcGen: string;
+  /** Trees of the project that are not used (a second `src-gen/` below its root), each said (docs/codegen.md "Where a project is"). */
+  layoutWarnings: string[];
   ms: number;
 }
 

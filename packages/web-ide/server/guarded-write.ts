@@ -1,7 +1,7 @@
 import { lstatSync } from 'node:fs';
 import { lstat } from 'node:fs/promises';
 import { join } from 'node:path';
-import { SRC_GEN_DIR, TREE_LOCK_NAME } from '@contract-studio/conventions';
+import { SRC_GEN_DIR, TREE_LOCK_NAME, projectRootOf } from '@contract-studio/conventions';
 import type { WorkspacePaths } from './workspace-paths.js';
 import { WorkspaceFs, type DirAt } from './workspace-fs.js';
 import { writeFileAtomic } from './atomic-write.js';
@@ -152,17 +152,14 @@ async function holdingTreeLock<T>(srcGen: string, what: string, prefix: string, 
 
 /**
  * The src-gen (workspace-relative) of the project that `.contract` or `.scenario` file `rel`
- * belongs to: that of its folder or the nearest folder above it (a real folder, not a link), or
- * undefined.
+ * belongs to, by the project rule (conventions' project-root.ts: that of the outermost folder
+ * above it holding one, a real folder, not a link), or undefined when none does.
  */
 function projectTreeOf(paths: WorkspacePaths, rel: string): string | undefined {
   if (!/\.(contract|scenario)$/.test(rel)) return undefined;
-  const parts = rel.split('/').slice(0, -1);
-  for (let n = parts.length; n >= 0; n--) {
-    const tree = [...parts.slice(0, n), SRC_GEN_DIR].join('/');
-    if (lstatSync(join(paths.root, tree), { throwIfNoEntry: false })?.isDirectory()) return tree;
-  }
-  return undefined;
+  const hasTree = (folder: string) => lstatSync(join(paths.root, folder, SRC_GEN_DIR), { throwIfNoEntry: false })?.isDirectory() ?? false;
+  const { root } = projectRootOf(rel, hasTree, []);
+  return hasTree(root) ? (root ? `${root}/${SRC_GEN_DIR}` : SRC_GEN_DIR) : undefined;
 }
 
 /** Runs `write` (a save) holding the write lock of generated tree `srcGen` (a workspace-relative folder), taken from its opened folder. */

@@ -28,6 +28,7 @@ import { WebSocketServer } from 'ws';
 import { SRC_GEN_DIR } from '@contract-studio/conventions';
 import { journalWarnings } from './journal-warnings.js';
 import { withProjectTreeLock } from './guarded-write.js';
+import { checkProjectRoot, unusedTreeWarnings } from './project-layout.js';
 
 export interface IdeServerOptions {
   /** The workspace folder opened by the IDE. */
@@ -204,15 +205,19 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       // the tree's write lock before the model is read: a terminal's rename, whose .contract files
       // and tree change together, is seen whole or not at all
       const project = paths.toRelative(projectDir);
+      // a folder inside a project (the Eclipse layout's src/) would get a second tree without the user's code
+      checkProjectRoot(paths.root, project);
+      let layoutWarnings: string[] = [];
       const report = await treeLock.run(() => inProjectFolder(paths, projectDir, (dir) => withProjectTreeLock(dir, async (journal) => {
         const { documents } = await loadWorkspaceDocuments(dir);
+        layoutWarnings = unusedTreeWarnings(dir, project, documents.map((d) => d.file));
         const generated = await runCodegen(documents, join(dir, SRC_GEN_DIR));
         // an interrupted terminal rename finished first: said in the Generate panel, first
         generated.warnings.unshift(...journalWarnings(journal));
         return generated;
       }, (f) => (project ? `${project}/${f}` : f))));
       const srcGen = paths.toRelative(join(projectDir, SRC_GEN_DIR));
-      const answer: GenerateResponse = { ...report, srcGen, ms: Date.now() - t0 };
+      const answer: GenerateResponse = { ...report, srcGen, layoutWarnings, ms: Date.now() - t0 };
       sendJson(res, 200, answer);
       watcher.broadcast('generated', { srcGen });
       return true;

@@ -12,7 +12,7 @@ import { BuildPanel } from './build/build-panel.js';
 import { GeneratePanel } from './build/generate-panel.js';
 import { api } from './api.js';
 import { toast } from './util/toast.js';
-import { isContract, projectOf } from './workspace/file-kinds.js';
+import { isContract } from './workspace/file-kinds.js';
 import { toRange } from './lsp/lsp-convert.js';
 import { ConflictView } from './editor/conflict-view.js';
 import { LayoutPersistence, layoutKey } from './app/layout-state.js';
@@ -71,7 +71,8 @@ async function main(): Promise<void> {
   ui.toolbar.newFile.addEventListener('click', () => void files.newEntry('file'));
   ui.toolbar.newFolder.addEventListener('click', () => void files.newEntry('dir'));
   ui.toolbar.newProject.addEventListener('click', () => void files.newProject());
-  const currentProject = () => projectOf(editors.active && !editors.active.startsWith('view:') ? editors.active : explorer.selected?.path ?? '', files.rootHasContracts());
+  // the project of the active file by the rule the CLI follows too (docs/codegen.md "Where a project is")
+  const currentProject = () => workspace.projectRootOf(editors.active && !editors.active.startsWith('view:') ? editors.active : explorer.selected?.path ?? '').root;
 
   const runs = new RunController({ workspace, build, toolbar: ui.toolbar, jobStatus: ui.status.job, showPanel: ui.showPanel, project: currentProject });
   connectProblems({ problems, workspace, editors, lsp, build, statusEl: ui.status.problems, showPanel: ui.showPanel, buildProject: () => runs.project });
@@ -80,7 +81,7 @@ async function main(): Promise<void> {
   const generator = new GenerateController({ workspace, explorer, problems, panel: generatePanel, button: ui.toolbar.generate, showPanel: ui.showPanel, project: currentProject });
 
   // the Monitor: live during a run (trace events), then the job's CSV logs as a recorded run
-  const monitor = new MonitorController({ editors, lsp, workspace, build, button: ui.toolbar.monitor, project: () => currentProject(), projectOf: (path) => projectOf(path, files.rootHasContracts()) });
+  const monitor = new MonitorController({ editors, lsp, workspace, build, button: ui.toolbar.monitor, project: () => currentProject(), projectOf: (path) => workspace.projectRootOf(path).root });
   // a trace file (`contract run --trace`: *.jsonl) opens in the Monitor as the run it records; any other file in its editor
   explorer.onOpen.on((path) => void (path.endsWith('.jsonl') ? monitor.openTraceFile(path) : editors.open(path)));
   // Simulate: supervisors in virtual time, shown in its panel and in the Monitor (docs/simulation.md "In the IDE")

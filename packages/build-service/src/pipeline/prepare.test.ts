@@ -304,5 +304,14 @@ describe('prepareWorkspace on a project folder: what of it is read', () => {
     // a project whose own src-gen/ is there builds, sub-folders and all
     writeFileSync(join(above, 'top.contract'), 'datatype TopT {int y = 1};\n');
     expect(await refusal({ dir: above })).not.toBe(said);
+    // a folder of several projects is not one project: refused, naming them
+    expect(await refusal({ files: { 'a/a.contract': 'datatype A {int x = 1};', 'b/src/b.contract': 'datatype B {int x = 1};' } }))
+      .toBe('the folder holds several projects (a/, b/): build one of them; nothing was built');
+  }, 120_000);
+
+  it('the Eclipse layout (src/*.contract, src-gen/ at the root) builds the root\'s tree; a second one, src/src-gen/, is said in the log', async () => {
+    const log: string[] = [];
+    await prepareWorkspace(workspace(), { files: { 'src/a.contract': 'datatype A {int x = 1};', 'src-gen/generated/notes.txt': 'mine', 'src/src-gen/generated/notes.txt': 'defaults' } }, 'cactal', { ...DEFAULT_LIMITS }, (l) => log.push(l));
+    expect(log).toContain('warning: src/src-gen/ is a second generated tree of this project, not used: the project is the folder built and its tree src-gen/ (the outermost folder holding a src-gen/ is the project; docs/codegen.md "Where a project is"): move any code of yours out of src/src-gen/, then delete it');
   }, 120_000);
 });

@@ -17,7 +17,7 @@ import type { UserCopy } from './gcc-diagnostics.js';
 import type { Workspace } from './workspaces.js';
 import { generatorIdentity, type GenerationCache } from '../cache/generation-cache.js';
 import { checkRelativePath, listFilesNoFollow, readFileHeadNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
-import { SRC_GEN_ARCHITECTURE_DIR, SRC_GEN_DIR, TREE_LOCK_NAME, foldersHoldingAll } from '@contract-studio/conventions';
+import { SRC_GEN_ARCHITECTURE_DIR, SRC_GEN_DIR, TREE_LOCK_NAME, projectRootsOf, unusedTreeWarning } from '@contract-studio/conventions';
 
 export type ProjectKind = 'cactal' | 'make';
 
@@ -93,7 +93,7 @@ function notReadMessage(refused: string[]): string {
 const isElf = (data: Buffer): boolean => data.length >= 4 && data[0] === 0x7f && data[1] === 0x45 && data[2] === 0x4c && data[3] === 0x46;
 
 /** Reads the project's files (never through links); returns them and a digest of paths + contents. */
-async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ wanted: Map<string, Buffer>; digest: string }> {
+async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ wanted: Map<string, Buffer>; digest: string; warnings: string[] }> {
   const wanted = new Map<string, Buffer>();
   let total = 0;
   const add = (rel: string, data: Buffer): void => {
@@ -139,14 +139,15 @@ async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ 
       add(rel, data);
     }
   }
+  let warnings: string[] = [];
   if (kind === 'cactal') {
-    checkProjectFolder([...wanted.keys()], nestedTrees);
+    warnings = checkProjectFolder([...wanted.keys()], nestedTrees);
     const foreign = foreignMakefiles(wanted.keys());
     if (foreign.length) throw new PrepareError(foreignMakefilesMessage(foreign), foreign);
   }
   const hash = createHash('sha256').update(kind);
   for (const rel of [...wanted.keys()].sort()) hash.update('\0').update(rel).update('\0').update(wanted.get(rel)!);
-  return { wanted, digest: hash.digest('hex') };
+  return { wanted, digest: hash.digest('hex'), warnings };
 }
 
 /**
@@ -182,18 +183,25 @@ export class PrepareError extends Error {
 }
 
 /**
- * A Cactal project with no `.contract` file, or whose `.contract` files are all in a sub-folder
- * that has its own `src-gen/` while the project has none (a build run one folder too high: the
- * user's code in that `src-gen/` would not be built, the generated defaults would), is refused.
+ * A Cactal project with no `.contract` file is refused; so is one whose root, by the rule of
+ * conventions' project-root.ts (docs/codegen.md "Where a project is"), is not the folder built:
+ * its `.contract` files all in a sub-folder that has its own `src-gen/` (a build run one folder too
+ * high: the user's code in that `src-gen/` would not be built, the generated defaults would), or
+ * a folder of several projects. Answers the warnings for trees of the project that are not used.
  */
-function checkProjectFolder(files: readonly string[], nestedTrees: ReadonlySet<string>): void {
+function checkProjectFolder(files: readonly string[], nestedTrees: ReadonlySet<string>): string[] {
   const models = files.filter((f) => f.endsWith('.contract'));
   if (!models.length) throw new PrepareError('no .contract file in the project: nothing to build (a project is the folder of its .contract files)');
-  if (files.some((f) => f.startsWith(`${SRC_GEN_DIR}/`))) return;
-  const sub = foldersHoldingAll(models).find((folder) => nestedTrees.has(folder));
-  if (sub !== undefined) {
+  const ownTree = files.some((f) => f.startsWith(`${SRC_GEN_DIR}/`));
+  const { roots, unusedTrees } = projectRootsOf(models, (folder) => (folder === '' ? ownTree : nestedTrees.has(folder)));
+  if (roots.length > 1) {
+    throw new PrepareError(`the folder holds several projects (${roots.map((r) => `${r}/`).join(', ')}): build one of them; nothing was built`);
+  }
+  const sub = roots[0] ?? '';
+  if (sub !== '') {
     throw new PrepareError(`the project's .contract files are all in ${sub}/, which has its own ${SRC_GEN_DIR}/ (its generated code and yours, which this build would leave out): build ${sub} instead; nothing was built`);
   }
+  return unusedTrees.map((u) => `warning: ${unusedTreeWarning(u, '', 'the folder built')}`);
 }
 
 export async function prepareWorkspace(
@@ -207,7 +215,8 @@ export async function prepareWorkspace(
 ): Promise<PrepareOutcome> {
   const stageProjectDir = join(ws.stageDir, 'project');
   await fsp.mkdir(stageProjectDir, { recursive: true, mode: 0o700 });
-  const { wanted, digest } = await readProject(source, kind);
+  const { wanted, digest, warnings } = await readProject(source, kind);
+  for (const w of warnings) log(w);
   if (kind === 'cactal') {
     // the generator's time and memory grow with the model: a model above the bound never reaches it
     let modelBytes = 0;

@@ -5,13 +5,14 @@
  * created, updated, kept, orphaned and removed; errors go to stderr. Exit 1 when the model has
  * errors (nothing is generated) or a file could not be merged (left untouched), 2 on bad usage.
  */
+import { lstatSync } from 'node:fs';
 import { stat } from 'node:fs/promises';
 import { join, resolve } from 'node:path';
 import type { FinishedRename, GenerationProblem, GenerationReport } from '@contract-studio/codegen';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { formatText, summarize } from '../diagnostic-format.js';
-import { SRC_GEN_DIR, foldersHoldingAll } from '@contract-studio/conventions';
+import { SRC_GEN_DIR, projectRootsOf, unusedTreeWarning } from '@contract-studio/conventions';
 import { safeName } from '../terminal-text.js';
 import { MENTIONED_KINDS, printRegionMentions } from '../region-mentions-text.js';
 import { holdTreeLock } from '../tree-lock-hold.js';
@@ -44,9 +45,11 @@ export const generateCommand: Command = {
         'usage: contract generate DIR [-o OUT] [--verbose]',
         '  OUT: output folder (default DIR/src-gen); the tree goes to OUT/generated/architecture',
         '  --verbose: also list the files kept unchanged (otherwise only counted)',
+        'DIR is the project\'s root (docs/codegen.md "Where a project is": the outermost folder holding a src-gen/, else the folder of the .contract files): its .contract files may be in a sub-folder (DIR/src/*.contract, tree DIR/src-gen);',
+        '  refused when they are all in a sub-folder with its own src-gen/ or DIR holds several projects; a second src-gen/ below DIR is said and not used.',
         'User code in protected regions is kept; code whose region or entity disappeared goes to OUT/orphans/.',
         'The runtime is not part of the tree: give it when building (contract build --runtime PATH, or make CONTRACT_RUNTIME=PATH).',
-        'exit status: 1 when the model has errors, DIR holds no .contract file, or its files are all in a sub-folder with its own src-gen/ (nothing generated), or a file could not be merged; 0 otherwise, 2 on bad usage',
+        'exit status: 1 when the model has errors, DIR holds no .contract file, its files are all in a sub-folder with its own src-gen/ or DIR holds several projects (nothing generated), or a file could not be merged; 0 otherwise, 2 on bad usage',
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
         const { positionals, options } = parseArgs(args, ['o', 'output', 'runtime'], ['verbose']);
@@ -83,6 +86,21 @@ async function generateHeld(
     generateArchitecture: typeof import('@contract-studio/codegen').generateArchitecture,
 ): Promise<number> {
         const workspace = await loadWorkspace(dir);
+        // where the project's root is (conventions' project-root.ts): DIR, unless its files are all in a
+        // sub-folder with its own src-gen/ or DIR holds several projects (-o OUT is taken as meant)
+        if (typeof outOption !== 'string' && workspace.documents.length > 0) {
+            const { roots, unusedTrees } = projectRootsOf(workspace.documents.map((d) => d.file), (folder) => isTreeFolder(join(dir, folder, SRC_GEN_DIR)));
+            if (roots.length > 1) {
+                io.err(`${safeName(dirArg)} holds several projects (${roots.map((r) => safeName(`${r}/`)).join(', ')}): generate one of them (contract generate ${safeName(join(dirArg, roots[0]!))}), or name the output with -o OUT; nothing was generated\n`);
+                return EXIT_FAILURE;
+            }
+            const nested = roots[0] ?? '';
+            if (nested !== '') {
+                io.err(`the .contract files of ${safeName(dirArg)} are all in ${safeName(nested)}/, which has its own ${SRC_GEN_DIR}/ (its generated code and yours): generate ${safeName(join(dirArg, nested))} instead (or name the output with -o OUT); nothing was generated\n`);
+                return EXIT_FAILURE;
+            }
+            for (const u of unusedTrees) io.err(`warning: ${unusedTreeWarning(safeName(join(dirArg, u)), safeName(dirArg))}\n`);
+        }
         const errors = workspace.diagnostics.filter((d) => d.severity === 'error');
         if (errors.length > 0) {
             io.err(formatText(errors, (file) => join(dirArg, file)));
@@ -91,13 +109,6 @@ async function generateHeld(
         }
         if (workspace.documents.length === 0) {
             io.err(`no .contract file in ${safeName(dirArg)}: nothing was generated (a project is the folder of its .contract files)\n`);
-            return EXIT_FAILURE;
-        }
-        // DIR holds a project in a sub-folder that has its own src-gen/ (generate run one folder up):
-        // a second, fresh tree here would not hold the user's code of that one
-        const nested = typeof outOption === 'string' ? undefined : await nestedProject(dir, workspace.documents.map((d) => d.file), out);
-        if (nested !== undefined) {
-            io.err(`the .contract files of ${safeName(dirArg)} are all in ${safeName(nested)}/, which has its own ${SRC_GEN_DIR}/ (its generated code and yours): generate ${safeName(join(dirArg, nested))} instead (or name the output with -o OUT); nothing was generated\n`);
             return EXIT_FAILURE;
         }
         const report = generateArchitecture(workspace.documents, out);
@@ -120,11 +131,7 @@ async function listFinishedRenameLeftovers(io: CliIO, finished: FinishedRename, 
     if (inCode > 0) io.err(`contract generate: the rename of ${finished.kind} ${finished.oldName} -> ${finished.newName} is finished, but ${inCode} use(s) of ${finished.oldName} in protected-region code were not changed (listed above)\n`);
 }
 
-/** The sub-folder of `dir` that holds every one of `files` and has a `src-gen/` of its own, when `dir` has none (`out` absent): the project is that folder. */
-async function nestedProject(dir: string, files: readonly string[], out: string): Promise<string | undefined> {
-    if (await stat(out).catch(() => undefined)) return undefined;
-    for (const sub of foldersHoldingAll(files)) {
-        if ((await stat(join(dir, sub, SRC_GEN_DIR)).catch(() => undefined))?.isDirectory()) return sub;
-    }
-    return undefined;
+/** `path` is a folder, not a link (a project's generated tree). */
+function isTreeFolder(path: string): boolean {
+    return lstatSync(path, { throwIfNoEntry: false })?.isDirectory() ?? false;
 }

@@ -28,6 +28,7 @@ export class GenerateController {
       await workspace.refreshTree();
       explorer.expand(`${r.srcGen}/generated/architecture/modules`);
       for (const p of [...workspace.files.keys()]) if (p.startsWith(`${r.srcGen}/`)) void workspace.externalChange(p);
+      for (const w of r.layoutWarnings ?? []) toast('warning', `Generate All: ${w}`);
       if (r.errors.length) toast('error', `Generate All: ${r.errors.length} error(s) — see the Generate panel`);
       else if (r.orphaned.length) toast('warning', `Generate All: ${r.orphaned.length} orphaned region(s) moved to ${r.srcGen}/orphans`);
       return r.errors.length === 0;

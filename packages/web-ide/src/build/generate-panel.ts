@@ -58,6 +58,8 @@ export class GeneratePanel {
         h('span', { class: 'pill' }, `${r.created.length} created`), h('span', { class: 'pill' }, `${r.updated.length} updated`),
         h('span', { class: 'pill' }, `${r.unchanged.length} unchanged`),
         h('span', { class: r.orphaned.length ? 'pill warning' : 'pill' }, `${r.orphaned.length} orphaned`), h('span', { class: 'muted' }, `${r.ms} ms`)),
+      r.layoutWarnings?.length ? h('div', { class: 'gen-section warnings layout-warnings' }, h('div', { class: 'gen-title' }, `Project layout (${r.layoutWarnings.length})`),
+        ...r.layoutWarnings.map((w) => h('div', { class: 'gen-problem' }, h('span', { class: 'sev' }, '⚠'), ' ', w))) : '',
       problems('Errors — files left untouched', r.errors as Problem[], 'errors') ?? '',
       r.orphaned.length ? h('div', { class: 'gen-section warnings' }, h('div', { class: 'gen-title' }, `Orphaned user code (${r.orphaned.length}) — moved, never deleted`), ...r.orphaned.map((f) => fileLink(f, 'orphan'))) : '',
       problems('Warnings', r.warnings as Problem[], 'warnings') ?? '',

@@ -19,10 +19,3 @@ export function languageLabel(path: string, languageId: string): string {
 
 /** Generated C under a src-gen/ folder: protected regions editable, the rest read-only. */
 export const isGeneratedC = (path: string) => /(^|\/)src-gen\//.test(path) && /\.(c|h)$/.test(path);
-
-/** The project folder of a path: the first segment when the workspace root holds no .contract file. */
-export function projectOf(path: string, rootHasContracts: boolean): string {
-  if (rootHasContracts) return '';
-  const i = path.indexOf('/');
-  return i < 0 ? '' : path.slice(0, i);
-}

@@ -2,6 +2,7 @@ import { monaco } from '../editor/monaco.js';
 import { api, ApiError, staleDetails, type TreeEntry, type Snapshot } from '../api.js';
 import { Emitter } from '../util/emitter.js';
 import { languageOf, isContract } from './file-kinds.js';
+import { SRC_GEN_DIR, projectRootOf, type ProjectRoot } from '@contract-studio/conventions';
 import { replaceKeepingCursor } from '../editor/replace-keeping-cursor.js';
 import { replaceByDiff } from '../editor/replace-by-diff.js';
 import type { BrowserCopy } from './browser-copies.js';
@@ -129,6 +130,33 @@ export class Workspace {
 
   private fileSet = new Set<string>();
   private fileSetOf: TreeEntry[] | undefined;
+
+  /**
+   * The project a workspace path belongs to, by the rule the CLI and a build follow (conventions'
+   * project-root.ts, docs/codegen.md "Where a project is"), from the tree as last listed: its root
+   * ('' = the workspace root) and the trees of it that are not used.
+   */
+  projectRootOf(path: string): ProjectRoot {
+    if (this.layoutOf !== this.entries) {
+      const dirs = new Set<string>();
+      const walk = (entries: TreeEntry[]): void => {
+        for (const e of entries) {
+          if (e.type !== 'dir') continue;
+          dirs.add(e.path);
+          if (e.children) walk(e.children);
+        }
+      };
+      walk(this.entries);
+      const contracts = this.allFiles().filter(isContract);
+      this.layout = { dirs, contracts };
+      this.layoutOf = this.entries;
+    }
+    const { dirs, contracts } = this.layout;
+    return projectRootOf(path, (folder) => dirs.has(folder ? `${folder}/${SRC_GEN_DIR}` : SRC_GEN_DIR), contracts);
+  }
+
+  private layout: { dirs: Set<string>; contracts: string[] } = { dirs: new Set(), contracts: [] };
+  private layoutOf: TreeEntry[] | undefined;
 
   async refreshTree(): Promise<void> {
     const t = await api.tree();
