@@ -11,7 +11,7 @@ import type { GccDiagnostic, Job, JobEvent, JobResult, JobService as JobServiceT
 import { CRASH_MARK, crashSiteOfLine, foreignMakefilesMessage, installedRuntimeProblem, renderDiagnostic } from '@contract-studio/build-service';
 import { folderOption, type ParsedArgs } from './args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO } from './command.js';
-import { addLimitOption, DEFAULT_PROCESS_LIMIT, emptyLimitOptions, modulesUnderProcessLimit, RENAME_JOURNAL_NAME, SANDBOX_CHOICES, SRC_GEN_DIR, withoutStuckAdvice, type LimitOptions } from '@contract-studio/conventions';
+import { addLimitOption, DEFAULT_PROCESS_LIMIT, emptyLimitOptions, modulesUnderProcessLimit, RENAME_JOURNAL_NAME, SANDBOX_CHOICES, SRC_GEN_DIR, UNUSED_TREE_LINE, withoutStuckAdvice, type LimitOptions } from '@contract-studio/conventions';
 import { defaultRuntimeSource } from './runtime-source.js';
 import { safeName } from './terminal-text.js';
 
@@ -407,7 +407,10 @@ export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['r
         // a diagnostic's line, or one of its notes, in the build's log: printed above with the diagnostic
         if (e.step === 'build' && e.source === 'build' && alreadyPrinted(e.line)) return;
         if (e.step === 'build' && e.source === 'build' && printedLinkerPlaces.size && printedLinkerPlaces.has(linkerPlaceOf(e.line))) return;
-        if (e.step === 'prepare' && (e.source === 'service' || (e.source === 'runtime' && e.stream === 'stderr')) && /error/i.test(e.line)) {
+        // a second generated tree of the project, not built (docs/codegen.md "Where a project is"): said in every text output
+        if (e.step === 'prepare' && e.source === 'service' && (/error/i.test(e.line) || UNUSED_TREE_LINE.test(e.line))) {
+            io.err(`${e.line}\n`);
+        } else if (e.step === 'prepare' && e.source === 'runtime' && e.stream === 'stderr' && /error/i.test(e.line)) {
             io.err(`${e.line}\n`);
         } else if (opts.verbose) {
             io.err(`${e.line}\n`);

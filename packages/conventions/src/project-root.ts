@@ -65,6 +65,9 @@ export function projectRootsOf(contractFiles: readonly string[], hasTree: TreePr
     return { roots: sorted, root: sorted[0] ?? '', unusedTrees: [...unused].sort() };
 }
 
+/** A log line of `unusedTreeWarning` (with its `warning: `). */
+export const UNUSED_TREE_LINE = /^warning: .*\/ is a second generated tree of this project, not used: /;
+
 /**
  * The warning (without its `warning: `) for a tree of the project that is not used: `unused` and
  * `root` (the project's folder, '' when paths are shown from it) as the caller shows folders;
