@@ -5,7 +5,7 @@
  *
  *   contract-launch [--run-dir DIR] [--log-dir DIR] [--start 'SUP.function(p=v,...)']
  *                   [--duration SECONDS] [--ready-timeout SECONDS] [--stop-first 'NAME ...']
- *                   [--cpus LIST] [--pm-qos-us N] [--require-realtime] EXECUTABLE...
+ *                   [--cpus LIST] [--pm-qos-us N] [--require-realtime] [--stdin NAME=FILE]... EXECUTABLE...
  *
  * Stopping (end of --duration, SIGINT, SIGTERM, --kill): the modules named by --stop-first (the
  * generated Makefile names the supervisors) get their KILL request first and the launcher waits
@@ -74,6 +74,7 @@ typedef struct {
     size_t crash_len;
     int crash_state;      /* 0 none, 1 a block naming it is open, 2 a whole block read (a later head starts anew), 3 saved */
     int crashed;          /* died by a signal the launcher did not send */
+    int stdin_fd;         /* --stdin NAME=FILE: the file it reads on its stdin (opened O_CLOEXEC), -1: /dev/null */
 } Child;
 
 static Child children[MAX_MODULES];
@@ -106,6 +107,11 @@ static const char *stop_first;  /* --stop-first: names, separated by spaces or c
 static cpu_set_t module_cpus;  /* --cpus: every module's affinity */
 static int pin_modules;
 
+/* --stdin NAME=FILE: module NAME reads FILE on its stdin (the others read /dev/null) */
+typedef struct { const char *name; size_t name_len; const char *file; int fd; } StdinFile;
+static StdinFile stdin_files[MAX_MODULES];
+static int n_stdin_files;
+
 static void say(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 static void say(const char *fmt, ...)
 {
@@ -122,7 +128,7 @@ static void usage(void)
     fprintf(stderr,
             "usage: contract-launch [--run-dir DIR] [--log-dir DIR] [--start 'SUP.function(p=v,...)']\n"
             "                       [--duration SECONDS] [--ready-timeout SECONDS] [--stop-first 'NAME ...']\n"
-            "                       [--cpus LIST] [--pm-qos-us N] [--require-realtime] EXECUTABLE...\n"
+            "                       [--cpus LIST] [--pm-qos-us N] [--require-realtime] [--stdin NAME=FILE]... EXECUTABLE...\n"
             "       contract-launch --check-realtime [--require-realtime]\n"
             "       contract-launch [--stop-first 'NAME ...'] --kill RUN_DIR\n"
             "       contract-launch --term-why CODE PID\n");
@@ -434,11 +440,57 @@ static int poll_outputs(struct pollfd *pfd, int *idx, int max)
 
 /* ------------------------------------------------------------------ children */
 
+/* The module name of an executable path: its base name. */
+static const char *exe_name(const char *exe)
+{
+    const char *base = strrchr(exe, '/');
+    return base ? base + 1 : exe;
+}
+
+/*
+ * Opens the file of each --stdin NAME=FILE (read-only, never inherited by the other modules),
+ * NAME one of the executables given, once: anything else is said and nothing starts (exit 2).
+ */
+static int open_stdin_files(char **exes, int n_exes)
+{
+    for (int k = 0; k < n_stdin_files; k++) {
+        StdinFile *f = &stdin_files[k];
+        int found = 0;
+        for (int e = 0; e < n_exes && !found; e++) {
+            const char *name = exe_name(exes[e]);
+            found = strlen(name) == f->name_len && strncmp(name, f->name, f->name_len) == 0;
+        }
+        if (!found) { say("--stdin %.*s=...: no module %.*s among the executables given", (int)f->name_len, f->name, (int)f->name_len, f->name); return -1; }
+        for (int j = 0; j < k; j++)
+            if (stdin_files[j].name_len == f->name_len && strncmp(stdin_files[j].name, f->name, f->name_len) == 0) {
+                say("--stdin %.*s=...: given twice", (int)f->name_len, f->name);
+                return -1;
+            }
+    }
+    for (int k = 0; k < n_stdin_files; k++) {
+        StdinFile *f = &stdin_files[k];
+        f->fd = open(f->file, O_RDONLY | O_CLOEXEC);
+        struct stat st;
+        if (f->fd < 0 || fstat(f->fd, &st) != 0 || S_ISDIR(st.st_mode)) {
+            say("--stdin %.*s=%s: cannot read it: %s", (int)f->name_len, f->name, f->file, f->fd < 0 ? strerror(errno) : "a folder");
+            return -1;
+        }
+        say("module %.*s reads its stdin from %s", (int)f->name_len, f->name, f->file);
+    }
+    return 0;
+}
+
+/* The file module `name` reads on its stdin (--stdin), -1 for /dev/null. */
+static int stdin_file_of(const char *name)
+{
+    for (int k = 0; k < n_stdin_files; k++)
+        if (strlen(name) == stdin_files[k].name_len && strncmp(name, stdin_files[k].name, stdin_files[k].name_len) == 0) return stdin_files[k].fd;
+    return -1;
+}
+
 static void derive_name(Child *c)
 {
-    const char *base = strrchr(c->exe, '/');
-    base = base ? base + 1 : c->exe;
-    snprintf(c->name, sizeof c->name, "%s", base);
+    snprintf(c->name, sizeof c->name, "%s", exe_name(c->exe));
 }
 
 static int spawn(Child *c, const sigset_t *oldmask)
@@ -456,8 +508,9 @@ static int spawn(Child *c, const sigset_t *oldmask)
             fprintf(stderr, "cannot set the CPU affinity of %s: %s\n", c->exe, strerror(errno));
             _exit(127);
         }
-        int devnull = open("/dev/null", O_RDONLY);
-        if (devnull >= 0) { dup2(devnull, STDIN_FILENO); close(devnull); }
+        int in = c->stdin_fd >= 0 ? c->stdin_fd : open("/dev/null", O_RDONLY);
+        if (in == STDIN_FILENO) fcntl(in, F_SETFD, 0);
+        else if (in >= 0) { dup2(in, STDIN_FILENO); close(in); }
         dup2(fds[1], STDOUT_FILENO);
         dup2(efds[1], STDERR_FILENO);
         execl(c->exe, c->exe, (char *)NULL);
@@ -925,6 +978,12 @@ int main(int argc, char *argv[])
             if (*end || ready_timeout <= 0) { say("--ready-timeout '%s': expected a number of seconds", v); return 2; }
         } else if (strcmp(a, "--cpus") == 0) cpus = v;
         else if (strcmp(a, "--pm-qos-us") == 0) pm_qos = v;
+        else if (strcmp(a, "--stdin") == 0) {
+            const char *eq = strchr(v, '=');
+            if (!eq || eq == v || !eq[1]) { say("--stdin '%s': expected NAME=FILE (the module's name, the file it reads on its stdin)", v); return 2; }
+            if (n_stdin_files >= MAX_MODULES) { say("--stdin: more than %d given", MAX_MODULES); return 2; }
+            stdin_files[n_stdin_files++] = (StdinFile){ v, (size_t)(eq - v), eq + 1, -1 };
+        }
         else { say("unknown option %s", a); usage(); return 2; }
     }
     char rt_err[256];
@@ -944,6 +1003,7 @@ int main(int argc, char *argv[])
     for (int k = i; k < argc; k++) {
         if (access(argv[k], X_OK) != 0) { say("%s: %s", argv[k], strerror(errno)); return 2; }
     }
+    if (open_stdin_files(argv + i, argc - i) != 0) return 2;
 
     if (dir_opt && *dir_opt) {
         if (mkdir_p(dir_opt) != 0 || realpath(dir_opt, run_dir) == NULL) { say("run directory %s: %s", dir_opt, strerror(errno)); return 2; }
@@ -1010,6 +1070,7 @@ int main(int argc, char *argv[])
         c->out[0].fd = c->out[1].fd = -1;
         derive_name(c);
         remove_old_crash_file(c);
+        c->stdin_fd = stdin_file_of(c->name);
         if (spawn(c, &oldmask) != 0) { n_children--; stop_all(sfd); clean_run_dir(run_dir); return 2; }
     }
     /* A run may start at SCHED_FIFO (the build service's real-time mode, docs/sandbox.md "Real-time

@@ -22,6 +22,7 @@ import { SANDBOX_CHOICES, SandboxRegistry, SandboxUnavailableError } from './san
 import type { SandboxChoice, SandboxName } from './sandbox/types.js';
 import { ServiceError } from './service-errors.js';
 import { checkRelativePath, isInside, removeTreeNoFollow, UnsafePathError } from './util/safe-fs.js';
+import { parseStdinField } from './pipeline/stdin-files.js';
 import { JSON_BODY_NOT_OBJECT, MIN_READY_TIMEOUT_SECONDS, cpuMissingFrom, isCpuList } from '@contract-studio/conventions';
 
 /** Characters no inline file path holds: controls, line separators, bidirectional overrides (a name shown as another one). */
@@ -169,7 +170,7 @@ export class JobService {
   parseRequest(body: unknown): { request: JobRequest; sandbox: SandboxChoice } {
     if (!body || typeof body !== 'object' || Array.isArray(body)) throw new ServiceError(400, 'bad_request', JSON_BODY_NOT_OBJECT);
     const b = body as Record<string, unknown>;
-    const known = new Set(['action', 'project', 'kind', 'sandbox', 'start', 'duration', 'readyTimeout', 'cpus', 'realtime', 'limits']);
+    const known = new Set(['action', 'project', 'kind', 'sandbox', 'start', 'duration', 'readyTimeout', 'cpus', 'realtime', 'limits', 'stdin']);
     for (const k of Object.keys(b)) if (!known.has(k)) throw new ServiceError(400, 'bad_request', `unknown field "${k}"`);
     const action = b.action ?? 'build';
     if (action !== 'build' && action !== 'run') throw new ServiceError(400, 'bad_request', 'action must be "build" or "run"');
@@ -194,6 +195,15 @@ export class JobService {
     if (missing !== undefined) throw new ServiceError(400, 'bad_request', `cpus: CPU ${missing} is not available here (${online} CPUs online: 0-${online - 1})`);
     if (b.realtime !== undefined && typeof b.realtime !== 'boolean') throw new ServiceError(400, 'bad_request', 'realtime must be true or false');
     if (b.realtime === true && action !== 'run') throw new ServiceError(400, 'bad_request', 'realtime applies to action "run" only');
+    let stdin: Record<string, string> | undefined;
+    if (b.stdin !== undefined) {
+      if (action !== 'run') throw new ServiceError(400, 'bad_request', 'stdin applies to action "run" only');
+      try {
+        stdin = parseStdinField(b.stdin);
+      } catch (e) {
+        throw new ServiceError(400, 'bad_request', (e as Error).message);
+      }
+    }
     let limits: Limits;
     try {
       limits = mergeLimits(this.limits, b.limits, true);
@@ -212,7 +222,7 @@ export class JobService {
     const duration = b.duration === undefined ? undefined : Math.min(b.duration as number, longestRun);
     const { project, projectKey } = this.parseProject(b.project);
     return {
-      request: { action, project, projectKey, kind, start: b.start as string | undefined, duration, ...(duration !== undefined && duration < (b.duration as number) ? { durationAsked: b.duration as number } : {}), ...(readyTimeout !== undefined ? { readyTimeout: readyTimeout as number } : {}), ...(b.cpus !== undefined ? { cpus: b.cpus as string } : {}), ...(b.realtime === true ? { realtime: true } : {}), limits },
+      request: { action, project, projectKey, kind, start: b.start as string | undefined, duration, ...(duration !== undefined && duration < (b.duration as number) ? { durationAsked: b.duration as number } : {}), ...(readyTimeout !== undefined ? { readyTimeout: readyTimeout as number } : {}), ...(b.cpus !== undefined ? { cpus: b.cpus as string } : {}), ...(b.realtime === true ? { realtime: true } : {}), ...(stdin && Object.keys(stdin).length ? { stdin } : {}), limits },
       sandbox,
     };
   }

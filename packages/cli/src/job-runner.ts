@@ -134,6 +134,8 @@ export interface RunRequest {
     readyTimeout?: number;
     cpus?: string;
     realtime?: boolean;
+    /** `--stdin NAME=FILE`: module NAME reads FILE (a file of the project, its path from DIR) on its stdin. */
+    stdin?: Record<string, string>;
     /** --run-limit: the run step's wall time limit in seconds (default: cliLimits). */
     runLimit?: number;
     /** `--limit NAME=VALUE`: the build service's limits for this job, above or below its defaults (docs/sandbox.md "Limits"), and their texts as written. */
@@ -226,6 +228,7 @@ export async function runJob(
                 ...(request.readyTimeout !== undefined ? { readyTimeout: request.readyTimeout } : {}),
                 ...(request.cpus !== undefined ? { cpus: request.cpus } : {}),
                 ...(request.realtime ? { realtime: true } : {}),
+                ...(request.stdin ? { stdin: request.stdin } : {}),
             });
         } catch (e) {
             if (e instanceof ServiceError) return { error: e.message, exitCode: e.status === 503 ? EXIT_ENVIRONMENT : EXIT_FAILURE };

@@ -21,6 +21,7 @@ import type { ProtectedRegion } from './protected-regions.js';
 import { JobEvents, type JobStatus, type JobStep, type StreamName } from './job-events.js';
 import { BuildOutputRouter, makeRecipeStatus, routeRunLine } from './output-router.js';
 import { generatedMakefileArgs, makeDir, PrepareError, prepareWorkspace, treeRoot, type ProjectKind, type ProjectSource } from './prepare.js';
+import { stageStdinFiles } from './stdin-files.js';
 import { SERVICE_AFFINITY } from './service-affinity.js';
 import { LauncherCrashes } from './launcher-crashes.js';
 import { addr2lineArgs, crashSite, crashSiteLine, CrashReports, MAX_ADDR2LINE_CHARS, parseAddr2line } from './crash-reports.js';
@@ -80,6 +81,8 @@ export interface JobRequest {
   cpus?: string;
   /** Real-time mode (run only): modules take their SCHED_FIFO priorities, bounded (docs/sandbox.md "Real-time mode"). */
   realtime?: boolean;
+  /** Run only: module name -> a file of the project it reads on its stdin (stdin-files.ts); the others read /dev/null. */
+  stdin?: Record<string, string>;
   limits: Limits;
 }
 
@@ -472,6 +475,7 @@ export class Job {
         this.system('run', durationCapMessage(this.request)!);
       if (this.request.readyTimeout !== undefined) runVars.push(`READY_TIMEOUT=${this.request.readyTimeout}`);
       if (this.request.cpus !== undefined) runVars.push(`CPUS=${this.request.cpus}`);
+      if (this.request.stdin) runVars.push(...(await stageStdinFiles(this.request.project, this.request.stdin, ws.workDir, work, ws.owner)));
       // each module's CSV log is capped before it can fill the work dir (the disk limit would stop the
       // whole run); a plain Makefile project has no runtime to read it
       const logBound = this.request.kind === 'cactal' ? await this.runLogBound(ctx.sandbox, ws.workDir) : null;

@@ -69,6 +69,19 @@ export function bareDurationWarning(option: string, text: string): string | null
     return `--${option} ${value}: a number without a unit is seconds (${value} s); write ${value}ms for milliseconds, ${value}s to say seconds`;
 }
 
+/** The `--stdin MODULE=FILE` options as module -> file (the build service checks the file: inside the project, a regular file, its size). */
+function stdinFiles(values: readonly string[]): Record<string, string> | undefined {
+    if (!values.length) return undefined;
+    const out: Record<string, string> = {};
+    for (const v of values) {
+        const m = /^([A-Za-z_][A-Za-z0-9_]*)=(.+)$/.exec(v);
+        if (!m) throw new UsageError(`bad --stdin '${v}': expected MODULE=FILE (e.g. --stdin MAA=commands.txt, FILE a file of the project)`);
+        if (out[m[1]!] !== undefined) throw new UsageError(`--stdin ${m[1]}: given twice`);
+        out[m[1]!] = m[2]!;
+    }
+    return out;
+}
+
 /** `--ready-timeout` as seconds: a duration (parseDuration) of MIN_READY_TIMEOUT_SECONDS at least. */
 export function checkReadyTimeout(text: string): number {
     let seconds: number;
@@ -205,7 +218,7 @@ export const runCommand: Command = {
     name: 'run',
     summary: 'build a Cactal project, run its architecture for a while, collect the CSV logs',
     usage: [
-        'usage: contract run DIR [--duration 10s] [--run-limit DURATION] [--start \'SUP.function(p={...})\'] [--logs OUT] [--trace FILE.jsonl] [--ready-timeout 10s] [--cpus LIST] [--realtime] [--limit NAME=VALUE]... [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--cache-dir DIR] [--verbose]',
+        'usage: contract run DIR [--duration 10s] [--run-limit DURATION] [--start \'SUP.function(p={...})\'] [--logs OUT] [--trace FILE.jsonl] [--ready-timeout 10s] [--cpus LIST] [--realtime] [--stdin MODULE=FILE]... [--limit NAME=VALUE]... [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--cache-dir DIR] [--verbose]',
         '  --duration: how long the architecture runs (default 10s; e.g. 500ms, 30s, 2m); then every module is stopped',
         '  DURATION (--duration, --run-limit, --ready-timeout): a number and its unit, ms, s or m; a number without a unit is seconds, with a warning on stderr',
         `  --run-limit: the run step's wall time limit (default: the duration + ${CLI_RUN_ROOM_SECONDS}s, and the --ready-timeout past 10s: the run lasts as long as asked);`,
@@ -217,6 +230,7 @@ export const runCommand: Command = {
         '           a supervisor, function or parameter the model does not have, or a value of the wrong type, is refused before the build (exit 2, with what it has)',
         '  --ready-timeout: how long every module\'s init may take before the start request is sent (default 10s); a module whose init has not returned by then stops the run (exit 4)',
         '  --cpus: pin every module to these CPUs (e.g. 1, 0-1; default: the system places them) — steadier periods',
+        '  --stdin MODULE=FILE: module MODULE reads FILE, a file of the project (its path from DIR, at most 1 MiB), on its stdin; every other module\'s stdin is /dev/null',
         '  --realtime: modules take their SCHED_FIFO priorities in the sandbox, bounded so that a runaway loop cannot freeze the machine (docs/sandbox.md "Real-time mode"); refused, saying why, where the host cannot grant it',
         '  --logs: folder the CSV logs (one per module) are copied to (default DIR/logs, never a link found there; collected from every sandbox, docker included);',
         '          it holds one run: the previous run\'s logs there are moved to OUT/previous/run-<time>/ first (never deleted)',
@@ -227,7 +241,7 @@ export const runCommand: Command = {
         EXIT_TABLE,
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
-        const parsed = parseArgs(args, [...COMMON_VALUED, 'duration', 'run-limit', 'start', 'logs', 'cpus', 'trace', 'ready-timeout'], [...COMMON_FLAGS, 'realtime'], COMMON_REPEATABLE);
+        const parsed = parseArgs(args, [...COMMON_VALUED, 'duration', 'run-limit', 'start', 'logs', 'cpus', 'trace', 'ready-timeout'], [...COMMON_FLAGS, 'realtime'], [...COMMON_REPEATABLE, 'stdin']);
         const limitOptions = parseLimitOptions(parsed);
         const opts = await parseJobOptions(parsed, io, onTerminal());
         // a bare number is seconds, said: `--duration 500` meant as milliseconds would run 8 minutes
@@ -253,6 +267,7 @@ export const runCommand: Command = {
         const cpusOption = parsed.options.get('cpus');
         const cpus = typeof cpusOption === 'string' ? checkCpus(cpusOption) : undefined;
         const realtime = parsed.options.get('realtime') === true;
+        const stdin = stdinFiles(parsed.repeated.get('stdin') ?? []);
         const traceOption = parsed.options.get('trace');
         if (traceOption === '') throw new UsageError('--trace needs a file: --trace FILE.jsonl');
         const traceNameBad = typeof traceOption === 'string' ? traceNameProblem(traceOption) : undefined;
@@ -284,7 +299,7 @@ export const runCommand: Command = {
             }
         }
         const onEvent = live ? (e: JobEvent) => live.event(e) : undefined;
-        const outcome = await runJob(opts, { action: 'run', duration, ...(runLimit !== undefined ? { runLimit } : {}), ...(readyTimeout !== undefined ? { readyTimeout } : {}), ...(start !== undefined ? { start } : {}), ...(cpus !== undefined ? { cpus } : {}), ...(realtime ? { realtime } : {}), ...(limitOptions ? { limitOptions } : {}) }, io, undefined, onEvent);
+        const outcome = await runJob(opts, { action: 'run', duration, ...(runLimit !== undefined ? { runLimit } : {}), ...(readyTimeout !== undefined ? { readyTimeout } : {}), ...(start !== undefined ? { start } : {}), ...(cpus !== undefined ? { cpus } : {}), ...(realtime ? { realtime } : {}), ...(stdin ? { stdin } : {}), ...(limitOptions ? { limitOptions } : {}) }, io, undefined, onEvent);
         if ('error' in outcome) {
             const untouched = await live?.abandon();
             io.err(`contract run: ${outcome.error}\n`);

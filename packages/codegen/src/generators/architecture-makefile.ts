@@ -25,6 +25,7 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         #   make run      run the architecture: make run [START='SUP.fn(p={1.0,2.0})'] [DURATION=10] [RUN_DIR=dir] [LOG_DIR=dir]
         #                 [CPUS=1] (pin every module to these CPUs) [PM_QOS_US=0] (hold CPU wake-up latency; root)
         #                 [READY_TIMEOUT=10] (seconds every module's init may take before the start; else the run stops)
+        #                 [STDIN_<MODULE>=file] (what that module reads on its stdin, a path from this folder; else /dev/null)
         #                 [REQUIRE_REALTIME=1] (refuse to run unless the modules may run at SCHED_FIFO; also CONTRACT_REQUIRE_REALTIME=1;
         #                 checked before the logs are moved: a refused run leaves them in LOG_DIR)
         #                 one run per LOG_DIR, as contract run: the CSV logs of the run before are moved to
@@ -73,7 +74,7 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         	  fi; \\
         	  echo "make run: the previous run's logs moved to $$to"; \\
         	fi
-        	$(LAUNCH) --run-dir '$(RUN_DIR)' --log-dir '$(LOG_DIR)' --start '$(START)' $(if $(SUPERVISORS),--stop-first '$(SUPERVISORS)') $(if $(DURATION),--duration '$(DURATION)') $(if $(CPUS),--cpus '$(CPUS)') $(if $(PM_QOS_US),--pm-qos-us '$(PM_QOS_US)') $(if $(READY_TIMEOUT),--ready-timeout '$(READY_TIMEOUT)') $(if $(filter 1,$(REQUIRE_REALTIME)),--require-realtime) $(foreach e,$(EXECUTABLES),modules/$(e)_mod/$(e))
+        	$(LAUNCH) --run-dir '$(RUN_DIR)' --log-dir '$(LOG_DIR)' --start '$(START)' $(if $(SUPERVISORS),--stop-first '$(SUPERVISORS)') $(if $(DURATION),--duration '$(DURATION)') $(if $(CPUS),--cpus '$(CPUS)') $(if $(PM_QOS_US),--pm-qos-us '$(PM_QOS_US)') $(if $(READY_TIMEOUT),--ready-timeout '$(READY_TIMEOUT)') $(if $(filter 1,$(REQUIRE_REALTIME)),--require-realtime) $(foreach e,$(EXECUTABLES),$(if $(STDIN_$(e)),--stdin '$(e)=$(STDIN_$(e))')) $(foreach e,$(EXECUTABLES),modules/$(e)_mod/$(e))
 
         kill:
         	$(LAUNCH) $(if $(SUPERVISORS),--stop-first '$(SUPERVISORS)') --kill '$(RUN_DIR)'
