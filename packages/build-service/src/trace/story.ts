@@ -69,8 +69,16 @@ export function stuckSaysGone(detail: string): boolean {
     return STUCK_GONE.test(detail);
 }
 
+/**
+ * What an `event_posted` record with `no subscriber` of event port `port` (`DET:0`) says: an event
+ * no one received (its subscriber had unsubscribed, none ever did), why a rule waiting for it did not fire.
+ */
+export function unheardEventText(port: string): string {
+  return `event ${port} posted with no subscriber: no one received it (no supervisor or module subscribed to ${port} then)`;
+}
+
 /** `crashed: signal 11 (SIGSEGV)` for a `module_crashed` record's detail (its record count left to the log's checks). */
-function crashText(detail: string): string {
+export function crashText(detail: string): string {
     return `crashed: ${detail.replace(/ records=\d+$/, '')}`;
 }
 
@@ -491,7 +499,7 @@ export class StoryTeller {
             const port = `${k.module}:${k.port ?? '?'}`;
             if (this.unheardPorts.has(port) || this.unheardPorts.size >= STORY_FOLLOWED) return undefined;
             this.unheardPorts.add(ownString(port));
-            return `${at(k)} event ${port} posted with no subscriber: no one received it (no supervisor or module subscribed to ${port} then); its later ones are counted at the end`;
+            return `${at(k)} ${unheardEventText(port)}; its later ones are counted at the end`;
         }
         if (k.kind === 'user') return `${at(k)} ${userRecordText(k)}`;
         // a log's bound reached (the runtime's at the bound and at its end, the build service's on a log it cut)
