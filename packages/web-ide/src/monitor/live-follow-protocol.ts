@@ -3,6 +3,7 @@
  * follows a live run's trace (LiveFollower, live-follower.ts). Plain data: they cross by
  * structured clone.
  */
+import { shortAtWord } from '../util/short-text.js';
 import type { TraceLine } from '@contract-studio/build-service/trace';
 import type { Mark } from './model-view.js';
 import type { MonitorState, Ns } from './monitor-state.js';
@@ -47,14 +48,18 @@ export const CONNECTION_LOST = 'connection to the build service lost';
 /** Why its trace is not whole then. */
 export const LOST_TRACE = 'lost the connection to the build service: the trace stops here (if the build service is still there when the job ends, the Monitor shows the run from its CSV logs)';
 
+/** The longest job message an outcome keeps (a hostile one could be megabytes): the run list shortens its entries further (monitor-panel.ts). */
+const MAX_OUTCOME_MESSAGE = 1000;
+
 /**
  * How a job ended, from its `end` event's result (build-service JobResult: `ok`, `message`;
- * hostile like any stream data): `succeeded`, `cancelled`, or `failed: <message>`.
+ * hostile like any stream data): `succeeded`, `cancelled`, or `failed: <message>` (a message past
+ * MAX_OUTCOME_MESSAGE ended at a word with `…`).
  */
 export function jobOutcome(result: unknown): string {
   const r = result && typeof result === 'object' ? (result as { ok?: unknown; message?: unknown }) : {};
   if (r.ok === true) return 'succeeded';
-  const message = typeof r.message === 'string' ? r.message.replace(/\s+/g, ' ').trim().slice(0, 200) : '';
+  const message = typeof r.message === 'string' ? shortAtWord(r.message.slice(0, 4 * MAX_OUTCOME_MESSAGE).replace(/\s+/g, ' ').trim(), MAX_OUTCOME_MESSAGE) : '';
   if (message === 'cancelled') return 'cancelled';
   return message ? `failed: ${message}` : 'failed';
 }

@@ -26,6 +26,7 @@ import { priorityText } from '@contract-studio/build-service/trace';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
 import { NOT_IN_MODEL, flowDropText, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, ruleTexts, timeReadout } from './panel-text.js';
 import { visibleText } from '@contract-studio/conventions';
+import { shortAtWord } from '../util/short-text.js';
 
 export type { SupervisorCatalogue } from './supervisor-rows.js';
 
@@ -174,7 +175,7 @@ export class MonitorPanel {
   /** The runs the user can pick (`selected` shown). */
   setSources(options: SourceOption[], selected: string | undefined): void {
     this.sourceSelect.replaceChildren(h('option', { value: '', disabled: true, selected: !selected }, options.length ? 'Choose a run…' : 'No run yet'),
-      ...options.map((o) => h('option', { value: o.id, selected: o.id === selected }, visibleText(o.label))));
+      ...options.map((o) => runListOption(o, o.id === selected)));
   }
 
   get current(): MonitorView | undefined {
@@ -590,6 +591,17 @@ export function modulesText(running: string[], noExit: string[]): string {
   const now = `Running now: ${running.sort().join(', ') || 'none'}`;
   if (!noExit.length) return now;
   return `${now} · no exit record: ${noExit.sort().join(', ')} (crashed, killed, or ended by its code's exit(): the run's messages say which)`;
+}
+
+/** An entry of the run list longer than this is ended at a word with `…` (a failed job's message can be hundreds of characters). */
+export const RUN_LIST_CHARS = 240;
+
+/** An entry of the run list: its label, shortened when long (shortAtWord), the whole label then its tooltip and accessible name. */
+function runListOption(o: SourceOption, selected: boolean): HTMLOptionElement {
+  const label = visibleText(o.label);
+  const text = shortAtWord(label, RUN_LIST_CHARS);
+  const whole = text === label ? undefined : label;
+  return h('option', { value: o.id, selected, title: whole, 'aria-label': whole }, text);
 }
 
 /** Whether `key` pressed on `target` is the focused control's own key, not the panel's shortcut. */
