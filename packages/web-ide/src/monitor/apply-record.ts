@@ -3,7 +3,7 @@
  * writes which kind, and what peer/port/detail hold). Pure and total: a record it does not use
  * changes only the record count; nothing read from the trace can make it throw.
  */
-import { dataDropReason, isRule, missedTicksOf, overrunningAfter, skippedReleasesOf, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { crashText, dataDropReason, isRule, missedTicksOf, overrunningAfter, skippedReleasesOf, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import {
   HIST_BUCKETS, histogramBucket, MAX_NAMES, RECENT_MARKS,
   type MonitorState, type Ns, type PeriodicState, type SupervisorState, type FunctionState, type FlowCount, type SchemaActivation, type ModuleState,
@@ -20,7 +20,7 @@ const MAX_STARTED = 16;
 export const FOLDED_KINDS: ReadonlySet<string> = new Set([
   'sup_rule', 'supervisor', 'module_hold', 'flow_hold', 'module_priority', 'request_received', 'scheduler',
   'ord_release', 'ord_complete', 'ord_deadline_miss', 'run_started', 'run_finished', 'module_started', 'module_exit',
-  'module_crashed', 'data_posted', 'data_dropped', 'event_received', 'requests_kept', 'requests_kept_end', 'priority',
+  'module_crashed', 'data_posted', 'data_dropped', 'event_posted', 'event_received', 'requests_kept', 'requests_kept_end', 'priority',
 ]);
 
 /** What applyRecord does with a well-formed record of a kind not in FOLDED_KINDS, at time t. */
@@ -233,6 +233,16 @@ function endKept(s: MonitorState, module: string): void {
   s.supervisorChanges++;
 }
 
+/** Whether `k` is an `event_posted` record of an event no one received (`no subscriber`, no peer). */
+export function isUnheardEvent(k: KnownRecord): boolean {
+  return k.kind === 'event_posted' && !k.peer && k.detail === 'no subscriber';
+}
+
+/** The event port an unheard event was posted on: `GCS:1`. */
+export function unheardPort(k: KnownRecord): string {
+  return `${k.module}:${k.port ?? '?'}`;
+}
+
 /** `t`: the record's time in ns since the run's first record; `t0`: that first record's mono_ns. */
 export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number): void {
   if (r.kind === 'unknown') {
@@ -405,6 +415,8 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       if (!m) return;
       m.alive = k.kind === 'module_started';
       if (!m.alive) m.running = false;
+      if (k.kind === 'module_crashed') m.crashed = crashText(k.detail).slice(0, 120);
+      else if (k.kind === 'module_started') m.crashed = undefined;
       m.since = t;
       // ORD gone (the end of a run: the launcher stops it before the supervisors, whose undos then
       // find no ORD to deactivate their schemas): no periodic schema runs any more
@@ -426,6 +438,10 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
     case 'requests_kept':
     case 'requests_kept_end':
       foldKept(s, k.module, k.peer, k.kind === 'requests_kept', f['request'], t);
+      return;
+    case 'event_posted':
+      // an event no one received: counted per port (one a subscriber received is not folded)
+      if (isUnheardEvent(k)) count(s, s.unheardEvents, unheardPort(k), t);
       return;
     case 'event_received': {
       const from = num(f['from_port']);

@@ -1,10 +1,11 @@
 /**
  * The monitor's timeline strip: the whole run on one canvas, a tick per mark (rule changes,
  * schema activations, deadline misses, overruns, function starts/stops, the modules' own records,
- * the run's errors, the requests a supervisor kept for a full mailbox: when it began and ended)
+ * the run's errors, the events no one received (a port's first), the modules' crashes, the requests a
+ * supervisor kept for a full mailbox: when it began and ended)
  * and the time cursor.
  * Clicking or dragging moves the cursor. A canvas: the marks are first binned by pixel column
- * (per row, the latest mark of a column sets its colour), then each row is drawn as runs of one
+ * (per row, the latest mark of a column sets its colour, but a crash's stays), then each row is drawn as runs of one
  * colour, so a frame costs at most a few rectangles per column however many marks there are (a
  * 1 kHz schema missing its deadlines for a minute reaches the model's 20,000).
  * Hovering it, its tooltip says the marks under the pointer (markTooltip): a deadline miss names
@@ -15,10 +16,10 @@ import { marksIn } from './model-view.js';
 import { fmtT } from './panel-text.js';
 
 /** Colours by index (0: no mark); a rule switched off is grey. */
-const PALETTE = ['', '#98c379', '#5c6370', '#61afef', '#e06c75', '#d19a66', '#c678dd', '#e5c07b', '#ff6ac1', '#56b6c2'];
-const COLOR: Record<Mark['kind'], number> = { rule: 1, schema: 3, miss: 4, overrun: 5, function: 6, user: 7, error: 8, kept: 9 };
+const PALETTE = ['', '#98c379', '#5c6370', '#61afef', '#e06c75', '#d19a66', '#c678dd', '#e5c07b', '#ff6ac1', '#56b6c2', '#ffffff'];
+const COLOR: Record<Mark['kind'], number> = { rule: 1, schema: 3, miss: 4, overrun: 5, function: 6, user: 7, error: 8, unheard: 8, kept: 9, crash: 10 };
 const RULE_OFF = 2;
-const ROW: Record<Mark['kind'], number> = { function: 0, user: 0, error: 0, kept: 0, rule: 1, schema: 2, miss: 3, overrun: 3 };
+const ROW: Record<Mark['kind'], number> = { function: 0, user: 0, error: 0, unheard: 0, kept: 0, crash: 0, rule: 1, schema: 2, miss: 3, overrun: 3 };
 const ROWS = 4;
 /** Marks a tooltip names (the rest counted), and how far from the pointer a mark is under it (px). */
 const TOOLTIP_MARKS = 6;
@@ -45,7 +46,7 @@ export class MarksStrip {
     this.canvas.className = 'monitor-strip';
     this.canvas.height = 44;
     this.canvas.setAttribute('role', 'img');
-    this.canvas.setAttribute('aria-label', 'Run timeline: function starts and stops (purple), the modules\' own records (yellow), errors (pink) and requests kept for a full mailbox and their end (cyan), rule changes (green), schema activations (blue), deadline misses (red), overruns (orange); click to move the cursor');
+    this.canvas.setAttribute('aria-label', 'Run timeline: function starts and stops (purple), the modules\' own records (yellow), errors and events no one received (pink), module crashes (white), requests kept for a full mailbox and their end (cyan), rule changes (green), schema activations (blue), deadline misses (red), overruns (orange); click to move the cursor');
     let dragging = false;
     const seek = (e: PointerEvent) => {
       const r = this.canvas.getBoundingClientRect();
@@ -91,7 +92,9 @@ export class MarksStrip {
     const bins = this.bins.length === ROWS * w ? this.bins.fill(0) : (this.bins = new Uint8Array(ROWS * w));
     for (const m of marks) {
       const col = Math.floor(x(m.t));
-      if (col >= 0 && col < w) bins[ROW[m.kind] * w + col] = m.kind === 'rule' && m.on === false ? RULE_OFF : COLOR[m.kind];
+      const at = ROW[m.kind] * w + col;
+      // a crash keeps its column: the errors that follow it (requests to the dead module) would hide it
+      if (col >= 0 && col < w && bins[at] !== COLOR.crash) bins[at] = m.kind === 'rule' && m.on === false ? RULE_OFF : COLOR[m.kind];
     }
     for (let row = 0; row < ROWS; row++) {
       const base = row * w;

@@ -8,8 +8,8 @@ import type { MonitorState, Ns } from './monitor-state.js';
 /** One thing the timeline marks at its time. */
 export interface Mark {
   t: Ns;
-  kind: 'rule' | 'schema' | 'miss' | 'overrun' | 'function' | 'user' | 'error' | 'kept';
-  /** Where: the supervisor or schema. */
+  kind: 'rule' | 'schema' | 'miss' | 'overrun' | 'function' | 'user' | 'error' | 'kept' | 'crash' | 'unheard';
+  /** Where: the supervisor or schema (a crash, an event no one received: the module). */
   where: string;
   label: string;
   /** Rule marks: active (true) or inactive. */

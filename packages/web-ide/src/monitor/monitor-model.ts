@@ -21,8 +21,8 @@
  * Memory per record is therefore bounded by keepRecords, not by the run's length (a 1 kHz schema
  * for 60 s is about 1.5 million records).
  */
-import { LogClocks, UndosToOrd, type UnservedUndos, parseRecordLine, isRule, askedToStopText, ignoredUndo, keptRequestsText, missCriticalDelayNs, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
-import { FOLDED_KINDS, applyRecord, applyUnfolded } from './apply-record.js';
+import { LogClocks, UndosToOrd, type UnservedUndos, parseRecordLine, isRule, askedToStopText, crashText, unheardEventText, ignoredUndo, keptRequestsText, missCriticalDelayNs, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { FOLDED_KINDS, applyRecord, applyUnfolded, isUnheardEvent, unheardPort } from './apply-record.js';
 import { nameIn, scanLine, scanned } from './line-scan.js';
 import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
 import { cloneState, emptyState, type MonitorState, type Ns } from './monitor-state.js';
@@ -261,7 +261,7 @@ class CycleWaits {
   }
 }
 
-const NOTABLE = new Set(['sup_rule', 'supervisor', 'scheduler', 'ord_deadline_miss', 'module_hold', 'flow_hold', 'module_started', 'module_exit',
+const NOTABLE = new Set(['sup_rule', 'supervisor', 'scheduler', 'ord_deadline_miss', 'module_hold', 'flow_hold', 'module_started', 'module_exit', 'module_crashed',
   'requests_kept', 'requests_kept_end']);
 
 export class MonitorModel implements MonitorView {
@@ -410,7 +410,9 @@ export class MonitorModel implements MonitorView {
   pushScanned(text: string, from: number, to: number, textId: number): boolean {
     const kind = scanned.kind;
     if (kind === 'user' || kind === 'error') return false; // parsed, for its mark (userMark, errorMark)
-    if (!FOLDED_KINDS.has(kind)) {
+    // an event a subscriber received (its peer) folds nothing: only one no one received is parsed
+    const delivered = kind === 'event_posted' && scanned.comma[4]! > scanned.comma[3]! + 1;
+    if (delivered || !FOLDED_KINDS.has(kind)) {
       if (kind === 'ord_finished') this.finishedLine(text);
       const t = this.timeOf(scanned.mono);
       this.keepLine(t, text, from, to, textId);
@@ -478,6 +480,18 @@ export class MonitorModel implements MonitorView {
     }
     if (r.kind !== 'unknown' && !isRule(r)) this.followUndoToOrd(t, r as KnownRecord);
     applyRecord(this.live, r, t, this.t0 ?? 0);
+    if (r.kind === 'event_posted') this.markUnheard(t, r as KnownRecord);
+  }
+
+  /**
+   * An event no one received, just folded: its port's first is marked on the functions' row, in
+   * `contract trace`'s words (its story tells the port's first too); Deliveries counts them all.
+   */
+  private markUnheard(t: Ns, k: KnownRecord): void {
+    if (!isUnheardEvent(k) || this.marks.length >= this.maxMarks) return;
+    const port = unheardPort(k);
+    if (this.live.unheardEvents.get(port)?.count !== 1) return;
+    this.marks.push({ t, kind: 'unheard', where: k.module, label: `${unheardEventText(port)}; Deliveries counts its later ones`.slice(0, 300) });
   }
 
   /** A record's share of the undos to ORD: ORD's exit or crash record marks those it never served (UndosToOrd.atOrdEnd). */
@@ -693,6 +707,8 @@ function markOf({ t, r }: Timed, late: string): Mark | undefined {
   if (r.kind === 'unknown') return undefined;
   const k = r as KnownRecord;
   const what = k.fields?.['what'];
+  // a module's code crashed (the runtime's signal handler wrote the record as it died), in contract trace's words
+  if (k.kind === 'module_crashed') return { t, kind: 'crash', where: k.module, label: crashText(k.detail).slice(0, 120) };
   if (k.kind === 'ord_deadline_miss') return { t, kind: 'miss', where: String(k.fields['schema'] ?? '?'), label: `deadline miss (ORD:0) cycle ${k.fields['cycle'] ?? '?'}${late}` };
   // ORD's answers to a supervisor's requests for a periodic schema, its ignored undo of an activation it does not serve included (ignoredUndo: as `contract trace` tells it)
   if (k.kind === 'scheduler' && (what === 'activate' || what === 'deactivate' || what === 'conflict' || ignoredUndo(k))) return { t, kind: 'schema', where: String(k.fields['schema'] ?? '?'), label: k.detail.slice(0, 120) };

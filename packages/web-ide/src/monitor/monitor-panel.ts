@@ -22,9 +22,9 @@ import type { MonitorState } from './monitor-state.js';
 import { activeSchemas, lastActivated, type SchemaInfo } from './active-schemas.js';
 import { MarksStrip, markTooltip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
-import { priorityText } from '@contract-studio/build-service/trace';
+import { priorityText, unheardEventText } from '@contract-studio/build-service/trace';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
-import { NOT_IN_MODEL, flowDropText, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, ruleTexts, timeReadout } from './panel-text.js';
+import { NOT_IN_MODEL, crashedModulesText, flowDropText, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, ruleTexts, timeReadout, unheardEventsRow } from './panel-text.js';
 import { visibleText } from '@contract-studio/conventions';
 import { shortAtWord } from '../util/short-text.js';
 
@@ -106,6 +106,8 @@ export class MonitorPanel {
    * (polite); written on a jump only, emptied when the cursor moves otherwise.
    */
   private readonly markSaid = h('div', { class: 'monitor-mark-said', role: 'status', 'aria-live': 'polite' });
+  /** The modules crashed at the cursor (crashedModulesText): drawn at every frame that moved, said at once (an alert). */
+  private readonly crashEl = h('div', { class: 'monitor-crashed', role: 'alert', hidden: true });
   private readonly supEl = h('div', { class: 'monitor-sups', role: 'list', 'aria-label': 'Supervisors' });
   private readonly schemasEl = h('div', { class: 'monitor-schemas', role: 'group', 'aria-label': 'Active schemas' });
   private readonly periodicEl = h('div', { class: 'monitor-periodic' });
@@ -140,6 +142,7 @@ export class MonitorPanel {
       h('div', { class: 'monitor-cursor' }, this.slider, this.timeText),
       this.strip.canvas,
       this.markSaid,
+      this.crashEl,
       h('div', { class: 'monitor-body' },
         this.boundEl,
         h('section', { class: 'monitor-section' }, h('h3', {}, 'Supervisors'), this.supEl),
@@ -369,6 +372,9 @@ export class MonitorPanel {
       this.drawClock(m, t, performance.now());
     } else if (this.due('clock', CLOCK_REDRAW_MS)) this.drawClock(m, t, performance.now());
     this.strip.draw(m.marks, m.end, t);
+    const crashed = crashedModulesText(s.modules);
+    this.crashEl.hidden = !crashed;
+    setText(this.crashEl, crashed);
     if (supervisorsMoved) {
       this.renderSupervisors(s);
       this.supsDrawn = { model: m, changes: s.supervisorChanges, sups: this.sups };
@@ -551,8 +557,10 @@ export class MonitorPanel {
     const atEnd = this.whole && !this.live && t >= (this.model?.end ?? 0);
     const running = new Set<string>();
     const noExit: string[] = [];
+    const crashed: string[] = [];
     for (const [k, m] of s.modules) {
-      if (atEnd && m.alive) noExit.push(k);
+      if (m.crashed !== undefined) crashed.push(k);
+      else if (atEnd && m.alive) noExit.push(k);
       else if (m.running) running.add(k);
     }
     const pulsing = new Set<string>();
@@ -565,13 +573,19 @@ export class MonitorPanel {
     }
     if (drawDiagram) d.highlight({ active: modules, running, pulsing, used });
     if (!drawFlows) return;
-    setText(this.modulesEl, modulesText([...running], noExit));
+    setText(this.modulesEl, modulesText([...running], noExit, crashed));
     this.boundEl.hidden = s.namesPastBound === 0;
     setText(this.boundEl, namesPastBoundText(s.namesPastBound));
     // deliveries: the busiest flows, with their count and last delivery
     // (a flow that drops values comes first: its consumer does not read it)
+    // the events no one received first (why a rule waiting for them did not fire), each port's
+    const unheard = [...s.unheardEvents].sort((a, b) => b[1].count - a[1].count).slice(0, 12).map(([port, f]) => {
+      const el = this.row(`unheard:${port}`, () => h('div', { class: 'monitor-flow event unheard', 'data-unheard': port, title: unheardEventText(port) }));
+      setText(el, unheardEventsRow(port, f));
+      return el;
+    });
     const flows = [...[...s.dataFlows].map(([k, f]) => ({ k, f, kind: 'data' })), ...[...s.eventFlows].map(([k, f]) => ({ k, f, kind: 'event' }))]
-      .sort((a, b) => (b.f.dropped ?? 0) - (a.f.dropped ?? 0) || b.f.count - a.f.count).slice(0, 12);
+      .sort((a, b) => (b.f.dropped ?? 0) - (a.f.dropped ?? 0) || b.f.count - a.f.count).slice(0, 12 - unheard.length);
     const rows = flows.map(({ k, f, kind }) => {
       const el = this.row(`flow:${kind}:${k}`, () => h('div', { class: `monitor-flow ${kind}`, 'data-flow': k }));
       setText(el, `${kind === 'data' ? '━' : '┅'} ${k.replace('->', ' → ')} ×${f.count}${flowDropText(k, f)} · last ${fmtT(f.last)}`);
@@ -579,16 +593,17 @@ export class MonitorPanel {
       setAttr(el, 'data-dropped', String(f.dropped ?? 0));
       return el;
     });
-    replaceIfChanged(this.flowsEl, rows);
+    replaceIfChanged(this.flowsEl, [...unheard, ...rows]);
   }
 }
 
 /**
- * `Running now: MAA, MAB`; at the end of a whole run, the modules with no exit record are said as
- * `contract trace` says them (its story's `no exit record follows`), not as running.
+ * `Running now: MAA, MAB`, then the modules whose code crashed (`· crashed: EST`); at the end of a
+ * whole run, the modules with no exit record are said as `contract trace` says them (its story's
+ * `no exit record follows`), not as running.
  */
-export function modulesText(running: string[], noExit: string[]): string {
-  const now = `Running now: ${running.sort().join(', ') || 'none'}`;
+export function modulesText(running: string[], noExit: string[], crashed: string[] = []): string {
+  const now = `Running now: ${running.sort().join(', ') || 'none'}${crashed.length ? ` · crashed: ${crashed.sort().join(', ')}` : ''}`;
   if (!noExit.length) return now;
   return `${now} · no exit record: ${noExit.sort().join(', ')} (crashed, killed, or ended by its code's exit(): the run's messages say which)`;
 }

@@ -141,6 +141,8 @@ export interface ModuleState {
   alive: boolean;
   runs: number;
   since: Ns;
+  /** Its code crashed (its `module_crashed` record: the runtime's signal handler wrote it as the module died), in `contract trace`'s words: `crashed: signal 11 (SIGSEGV)`; gone when it is started again. */
+  crashed?: string;
 }
 
 export interface FlowCount {
@@ -165,6 +167,11 @@ export interface MonitorState {
   /** Keyed `PRODUCER:port->CONSUMER:port`. */
   dataFlows: Map<string, FlowCount>;
   eventFlows: Map<string, FlowCount>;
+  /**
+   * Events no one received (`event_posted` with `no subscriber`: the supervisor that waited for it had
+   * unsubscribed, or none ever subscribed), keyed by the event port `MODULE:port`.
+   */
+  unheardEvents: Map<string, FlowCount>;
   /** Lines that are no record (unreadable). */
   unknownLines: number;
   /**
@@ -190,7 +197,7 @@ export const MAX_NAMES = 1024;
 export const RECENT_MARKS = 64;
 
 export function emptyState(): MonitorState {
-  return { t: 0, records: 0, supervisors: new Map(), supervisorChanges: 0, schemas: new Map(), periodic: new Map(), modules: new Map(), dataFlows: new Map(), eventFlows: new Map(), unknownLines: 0, names: 0, namesPastBound: 0, ordPriority: '' };
+  return { t: 0, records: 0, supervisors: new Map(), supervisorChanges: 0, schemas: new Map(), periodic: new Map(), modules: new Map(), dataFlows: new Map(), eventFlows: new Map(), unheardEvents: new Map(), unknownLines: 0, names: 0, namesPastBound: 0, ordPriority: '' };
 }
 
 /** A deep copy (the state is plain data: objects, arrays and Maps, which structuredClone and postMessage keep). */

@@ -4,7 +4,7 @@
  * without a page (panel-text.test.ts).
  */
 import { durationText, readableCause } from '@contract-studio/build-service/trace';
-import { MAX_NAMES, quantileBoundNs, type FlowCount, type KeptRequests, type PeriodicState, type RuleState } from './monitor-state.js';
+import { MAX_NAMES, quantileBoundNs, type FlowCount, type KeptRequests, type ModuleState, type PeriodicState, type RuleState } from './monitor-state.js';
 
 /** `+2.010325 s`: a time of the run (ns since its first record). */
 export const fmtT = (ns: number): string => `+${(ns / 1e9).toFixed(6)} s`;
@@ -94,6 +94,24 @@ export function flowDropText(key: string, f: FlowCount): string {
   const consumer = key.slice(key.indexOf('->') + 2).split(':')[0];
   const why = f.dropReason === 'queue full' ? `queue full: ${consumer} does not read it fast enough` : f.dropReason;
   return ` · ${f.dropped} dropped (${why})`;
+}
+
+/**
+ * The Deliveries row of an event port whose events no one received: `┅ GCS:1 → no subscriber ×3 ·
+ * no one received them · last +3.306199 s`.
+ */
+export function unheardEventsRow(port: string, f: FlowCount): string {
+  return `┅ ${port} → no subscriber ×${f.count} · no one received ${f.count === 1 ? 'it' : 'them'} · last ${fmtT(f.last)}`;
+}
+
+/**
+ * The modules whose code crashed, at the cursor (their `module_crashed` record read; a module
+ * started again is no longer said): `⚠ EST crashed at +4.240958 s: signal 11 (SIGSEGV)`, one
+ * sentence each, sorted by time; '' when none did.
+ */
+export function crashedModulesText(modules: ReadonlyMap<string, ModuleState>): string {
+  const crashed = [...modules].filter(([, m]) => m.crashed !== undefined).sort((a, b) => a[1].since - b[1].since);
+  return crashed.map(([name, m]) => `⚠ ${name} ${m.crashed!.replace(/^crashed: /, `crashed at ${fmtT(m.since)}: `)}`).join('\n');
 }
 
 /**
