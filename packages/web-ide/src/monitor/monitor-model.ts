@@ -702,6 +702,9 @@ export class MonitorModel implements MonitorView {
   }
 }
 
+/** Longest ORD line an overrun's mark says (a log's line is cut at 4 KiB: a forged one must not fill the tooltip). */
+const MAX_ORD_MARK_CHARS = 400;
+
 function markOf({ t, r }: Timed, late: string): Mark | undefined {
   if (isRule(r)) return { t, kind: 'rule', where: r.module, label: `${r.function}.${r.rule} ${r.active ? 'active' : 'inactive'} ← ${readableCause(r.cause).slice(0, 80)}`, on: r.active };
   if (r.kind === 'unknown') return undefined;
@@ -712,8 +715,9 @@ function markOf({ t, r }: Timed, late: string): Mark | undefined {
   if (k.kind === 'ord_deadline_miss') return { t, kind: 'miss', where: String(k.fields['schema'] ?? '?'), label: `deadline miss (ORD:0) cycle ${k.fields['cycle'] ?? '?'}${late}` };
   // ORD's answers to a supervisor's requests for a periodic schema, its ignored undo of an activation it does not serve included (ignoredUndo: as `contract trace` tells it)
   if (k.kind === 'scheduler' && (what === 'activate' || what === 'deactivate' || what === 'conflict' || ignoredUndo(k))) return { t, kind: 'schema', where: String(k.fields['schema'] ?? '?'), label: k.detail.slice(0, 120) };
-  // an overrun's first skipped release, and, when the cycle skipped more, its count at its end
-  if (k.kind === 'scheduler' && (what === 'overrun' || what === 'overrun_ended')) return { t, kind: 'overrun', where: String(k.fields['schema'] ?? '?'), label: k.detail.slice(0, 120) };
+  // an overrun's first skipped release, and, when the cycle skipped more, its count at its end: whatever ORD's line says
+  // (the module its cycle still waits for, when it names one), within the bound of a line a log holds
+  if (k.kind === 'scheduler' && (what === 'overrun' || what === 'overrun_ended')) return { t, kind: 'overrun', where: String(k.fields['schema'] ?? '?'), label: k.detail.slice(0, MAX_ORD_MARK_CHARS) };
   if (k.kind === 'supervisor' && (what === 'function_started' || what === 'function_stopped' || what === 'function_refused')) return { t, kind: 'function', where: k.module, label: k.detail.slice(0, 120) };
   return undefined;
 }

@@ -503,7 +503,11 @@ export class MonitorPanel {
           title: m.marksBetween(x.t, x.t).find((k) => k.kind === 'miss' && k.where === name)?.label ?? `deadline miss (ORD:0) cycle ${x.cycle}`,
         }, `ORD:0 cycle ${x.cycle} at ${fmtT(x.t)}`)),
           ...lastOf(overruns.length, p?.overruns ?? 0, 'overruns'),
-          ...overruns.map((x) => h('span', { class: 'overrun' }, `overrun after cycle ${x.cycle} at ${fmtT(x.t)}`)));
+          // each overrun's tooltip: its mark's label, ORD's line as it says it (the module the cycle still waits for, when it names one)
+          ...overruns.map((x) => h('span', {
+            class: 'overrun',
+            title: m.marksBetween(x.t, x.t).find((k) => k.kind === 'overrun' && k.where === name)?.label ?? `overrun after cycle ${x.cycle}`,
+          }, `overrun after cycle ${x.cycle} at ${fmtT(x.t)}`)));
       }
       return hist.root;
     });

@@ -7,7 +7,8 @@
  * - EST's crash: said under the strip as an alert the moment its `module_crashed` record comes
  *   (live: before the job ends), named after the modules running now, marked on the strip;
  * - the failed job's long message: its run list entry ended at a word with `…`, the whole label its
- *   tooltip and accessible name.
+ *   tooltip and accessible name;
+ * - an overrun listed under its schema: ORD's line, as the record says it, its tooltip.
  * Replayed from the logs (a folder of the workspace) and followed live (a job's trace stream).
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
@@ -68,6 +69,8 @@ describe('Monitor: an event no one received, a module that crashed', () => {
     expect(await unheardRows(page)).toEqual(['┅ GCS:1 → no subscriber ×1 · no one received it · last +0.336166 s']);
     // the row comes first under Deliveries, its tooltip in contract trace's words
     expect(await page.locator('.monitor-flows > :first-child').getAttribute('title')).toBe('event GCS:1 posted with no subscriber: no one received it (no supervisor or module subscribed to GCS:1 then)');
+    // an overrun listed under its schema: its tooltip is ORD's line, as the record says it
+    expect(await page.locator('.monitor-pschema[data-periodic=altHold] .overrun').last().getAttribute('title')).toBe('overrun: altHold cycle still running, release skipped');
     await page.locator('.monitor-flows').scrollIntoViewIfNeeded();
     await shot(page, 'monitor-faults-01-recorded');
     // from the start, ] steps mark by mark to the event no one received, then on to the crash: each said under the strip
