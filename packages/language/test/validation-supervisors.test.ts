@@ -171,6 +171,18 @@ describe('supervisors: more behaviour', () => {
         expect(warned).toEqual(['Input event port :2 (connection_status) is also subscribed to MAA:2 by rule A: an input port takes one subscribe at a time, the same producer\'s too (the second is refused while the first holds it: `port :2 already subscribed`). Make sure these rules are never active at once, or subscribe once in a rule active whenever either needs the events.']);
     });
 
+    it('an event reading the variables of two input ports it is delivered to is warned: an occurrence writes one', async () => {
+        const ports = 'in :2 string connection_status; in :4 string status2; out :1 string failure_message_type;';
+        const rules = (post: string) => `HOLD: [elapsed=1ms] subscribe MAA:2 =* :2 [elapsed=2ms]\nLAND: [endof(HOLD)] subscribe MAA:2 =* :4 [${post}]`;
+        const warnings = async (post: string) => (await build(sup(rules(post), { ports, locals: 'string last;' }))).diagnostics.filter((d) => d.severity === 'warning').map((d) => `${d.code}: ${d.message}`);
+        expect(await warnings('MAA:2<status2 == "landed">(last = status2)')).toEqual([]);
+        expect(await warnings('MAA:2<status2 == "landed"> or MAA:2<connection_status == "lost">')).toEqual([]);
+        expect(await warnings('MAA:2<status2 == "landed" | connection_status == "lost">')).toEqual([
+            'supervisor-event-variable: MAA:2 is delivered to :2 connection_status, :4 status2 (one subscribe each), and this event reads the variables of :4 status2, :2 connection_status: an occurrence comes in on one of them and writes that one only, so what it reads of the others is older. Read one input port per event; to wait for either, write one event per port: MAA:2<status2 ...> or MAA:2<connection_status ...>.'
+        ]);
+        expect(await warnings('MAA:2<status2 == "landed">(last = connection_status)')).toHaveLength(1);
+    });
+
     it('a label referenced but not defined is a linking error listing the labels', async () => {
         const built = await build(sup('A: [endof(NOPE)] compute doit("x", 1.0) [elapsed=2ms]'));
         const found = built.diagnostics.filter((d) => d.code === 'linking-error');

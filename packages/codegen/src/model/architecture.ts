@@ -124,7 +124,12 @@ export type Event =
     | { kind: 'started' | 'endof'; rule: string; persistence: Persistence }
     | { kind: 'duration'; rule: string; timeNs: number; persistence: Persistence }
     | { kind: 'elapsed'; timeNs: number; persistence: Persistence }
-    | { kind: 'module'; source: string; port: number; tests: Test[][]; persistence: Persistence; extractions: Assignment[] };
+    /**
+     * `source:port`; `inPort`: the supervisor input port whose deliveries it waits for (the
+     * language's eventInPort: the only one the function subscribes it to, or the only one of them
+     * whose variable it reads), -1 for any of them (and for ORD's events).
+     */
+    | { kind: 'module'; source: string; port: number; inPort: number; tests: Test[][]; persistence: Persistence; extractions: Assignment[] };
 
 /** `c1 or c2 ...`, each clause `(e1 and e2 ...)`. */
 export type Condition = Event[][];

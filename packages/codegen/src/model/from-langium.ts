@@ -15,7 +15,7 @@ import {
     type Condition as AstCondition, type Event as AstEvent, type Action as AstAction, type Persistence as AstPersistence,
     type Extraction, type ParameterSetting, type TestOperand, type Test as AstTest, type Module as AstModule,
     type Supervisor as AstSupervisor, type Schema as AstSchema, type SupervisionFunction as AstFunction,
-    isBoolLiteral, isConstant, isEnumType, isFieldSegment, constantValue, exactIntegerText, segmentIndex, typeOf, typeOfVariableRef,
+    eventInPort, isBoolLiteral, isConstant, isEnumType, isFieldSegment, constantValue, exactIntegerText, segmentIndex, typeOf, typeOfVariableRef,
     type CactalType, type ConstantValue, type PathSegment as AstPathSegment,
 } from '@contract-studio/language';
 import type {
@@ -177,6 +177,7 @@ function event(e: AstEvent): Event {
         kind: 'module',
         source: e.ord ? 'ORD' : (e.source?.$refText ?? '?'),
         port: e.ord ? Number(e.ordPort) : indexOf(e.port),
+        inPort: eventInPort(e).port?.index ?? -1,
         tests: e.tests.map((c) => c.tests.map(test)),
         persistence: p,
         extractions: e.extractions.map(assignment),

@@ -6,3 +6,4 @@ export * from './values.js';
 export * from './schema-conflicts.js';
 export * from './constants.js';
 export * from './strings.js';
+export * from './event-in-port.js';

@@ -9,7 +9,7 @@ import { AstUtils, type ValidationAcceptor, type ValidationChecks } from 'langiu
 import {
     isDurationEvent, isElapsedEvent, isEndofEvent, isExtraction, isFunctionParameter, isLocalVariable, isModuleEvent, isModuleInstance,
     isNotify, isRule, isStartedEvent, isStructValue, isSubscribe, isSupervisionFunction, isVariableRef,
-    isIntLiteral, isRealLiteral, isStringLiteral, isBoolLiteral, isRelationalTest, isPort, isSupervisor, isClause,
+    isIntLiteral, isRealLiteral, isStringLiteral, isBoolLiteral, isRelationalTest, isClause,
     type CactalAstType, type Clause, type ElapsedEvent, type EqualityTest, type Event, type Extraction, type ModuleEvent, type RelationalTest,
     type Port, type Rule, type TestOperand, type VariableRef
 } from '../generated/ast.js';
@@ -17,6 +17,7 @@ import type { CactalServices } from '../cactal-module.js';
 import { rulesOf } from '../model/blocks.js';
 import { isNumeric, isOrdered, sameType, typeName, typeOfVariableRef, variableRefText, type CactalType } from '../model/types.js';
 import { SupervisorCodes } from './codes/supervisors.js';
+import { deliveredPorts, eventInPort, inputPortRead } from '../model/event-in-port.js';
 import { ordSchemaTestName } from '../model/ord-schema-tests.js';
 import { ProjectNames } from './project-index.js';
 import { nearName } from './unresolved-messages.js';
@@ -96,47 +97,32 @@ function checkEventSubscribed(event: ModuleEvent, accept: ValidationAcceptor): v
         { node: event, property: 'port' });
 }
 
-/** The supervisor input ports that the function's subscribes connect this event's source port to. */
-function deliveredPorts(event: ModuleEvent): Set<Port> {
-    const ports = new Set<Port>();
-    const source = event.source?.ref;
-    const port = event.port?.ref;
-    const fn = AstUtils.getContainerOfType(event, isSupervisionFunction);
-    if (event.ord || !source || !port || !fn) return ports;
-    for (const rule of rulesOf(fn)) {
-        for (const a of rule.actions) {
-            const target = isSubscribe(a) && a.source?.ref === source && a.sourcePort?.ref === port ? a.targetPort?.ref : undefined;
-            if (target) ports.add(target);
-        }
-    }
-    return ports;
-}
-
-/** The supervisor input port a variable reference reads, if it reads one. */
-function inputPortRead(ref: VariableRef): Port | undefined {
-    const variable = ref.variable?.ref;
-    return isPort(variable) && variable.direction === 'in' && isSupervisor(variable.$container?.$container) ? variable : undefined;
-}
-
 function checkEventVariables(event: ModuleEvent, accept: ValidationAcceptor): void {
     if (event.ord || !event.source?.ref || !event.port?.ref) return;
-    const own = deliveredPorts(event);
-    if (own.size === 0) return; // never subscribed: reported by supervisor-event-not-subscribed
+    const binding = eventInPort(event);
+    const own = binding.delivered;
+    if (own.length === 0) return; // never subscribed: reported by supervisor-event-not-subscribed
     const name = `${event.source.ref.name}:${event.port.ref.index}`;
-    const list = (ports: Set<Port>) => [...ports].map((p) => `:${p.index} ${p.name}`).join(', ');
+    const list = (ports: Port[]) => ports.map((p) => `:${p.index} ${p.name}`).join(', ');
     for (const clause of event.tests) {
         for (const node of AstUtils.streamAllContents(clause)) {
             const port = isVariableRef(node) ? inputPortRead(node) : undefined;
-            if (port && !own.has(port)) {
+            if (port && !own.includes(port)) {
                 report(accept, SupervisorCodes['supervisor-event-variable'],
                     `${name} is delivered to ${list(own)}; '${variableRefText(node as VariableRef)}' is the variable of input port :${port.index}, which this event does not write: the test would read an older value.`,
                     { node });
             }
         }
     }
+    if (binding.ambiguous) {
+        const alternatives = binding.read.map((p) => `${name}<${p.name} ...>`).join(' or ');
+        report(accept, SupervisorCodes['supervisor-event-variable'],
+            `${name} is delivered to ${list(own)} (one subscribe each), and this event reads the variables of ${list(binding.read)}: an occurrence comes in on one of them and writes that one only, so what it reads of the others is older. Read one input port per event; to wait for either, write one event per port: ${alternatives}.`,
+            { node: event, property: 'port' });
+    }
     if (event.extractions.length === 0) return;
     const clauseEvents = isClause(event.$container) ? event.$container.events.filter(isModuleEvent) : [event];
-    const written = new Set(clauseEvents.flatMap((e) => [...deliveredPorts(e)]));
+    const written = new Set(clauseEvents.flatMap(deliveredPorts));
     for (const extraction of event.extractions) {
         if (!extraction.value) continue;
         for (const node of [extraction.value, ...AstUtils.streamAllContents(extraction.value)]) {

@@ -92,12 +92,6 @@ function persistence(e: Event): string {
     return `.persist = CONTRACT_PERSIST_TIME, .persist_ns = ${p.ns}`;
 }
 
-/** The supervisor in port that receives `module:port`, from the function's subscribe actions (-1: none). */
-function inPortOf(ctx: RuleContext, module: string, port: number): number {
-    for (const r of ctx.fn.rules) for (const a of r.actions) if (a.kind === 'subscribe' && a.source === module && a.sourcePort === port) return a.inPort;
-    return -1;
-}
-
 function eventTable(ctx: RuleContext, e: Event, base: string): string {
     const { b } = ctx;
     switch (e.kind) {
@@ -109,7 +103,6 @@ function eventTable(ctx: RuleContext, e: Event, base: string): string {
         case 'elapsed':
             return `{.kind = CONTRACT_EV_ELAPSED, .time_ns = ${e.timeNs}, ${persistence(e)}}`;
         case 'module': {
-            const inPort = e.source === 'ORD' ? -1 : inPortOf(ctx, e.source, e.port);
             const clauses = e.tests.map((clause, ci) => {
                 const tests = clause.map((t) => testTable(ctx, t, `${base}_t${ci}`));
                 return `{${tests.length}, ${b.array(`${base}_t${ci}_tests`, 'ContractTest', tests)}}`;
@@ -120,7 +113,7 @@ function eventTable(ctx: RuleContext, e: Event, base: string): string {
                 return li < 0 ? [] : assignments(b, li, ctx.fn.locals[li]!.type, x.path, x.value, ctx.resolve);
             });
             const extr = b.array(`${base}_extractions`, 'ContractAssign', extractions);
-            return `{.kind = CONTRACT_EV_MODULE, .module = "${e.source}", .port = ${e.port}, .in_port = ${inPort}, .ntest_clauses = ${clauses.length}, .test_clauses = ${testArr}, ${persistence(e)}, .nextractions = ${extractions.length}, .extractions = ${extr}}`;
+            return `{.kind = CONTRACT_EV_MODULE, .module = "${e.source}", .port = ${e.port}, .in_port = ${e.inPort}, .ntest_clauses = ${clauses.length}, .test_clauses = ${testArr}, ${persistence(e)}, .nextractions = ${extractions.length}, .extractions = ${extr}}`;
         }
     }
 }

@@ -114,7 +114,7 @@ export const { area: supervisorsArea, codes: SupervisorCodes } = defineCodes('Su
     },
     'supervisor-event-variable': {
         severity: 'warning',
-        description: 'A module event delivers its data into the supervisor input ports its subscribes connect it to (`subscribe MAA:2 =* :2` writes `:2`). A test of the event reads another input port\'s variable, or an extraction reads an input port that no module event of its clause writes: it would see that port\'s older value, not this event\'s data.',
+        description: 'A module event delivers its data into the supervisor input ports its subscribes connect it to (`subscribe MAA:2 =* :2` writes `:2`). A test of the event reads another input port\'s variable, or an extraction reads an input port that no module event of its clause writes: it would see that port\'s older value, not this event\'s data. When the function subscribes the module port to several input ports, the event waits for the deliveries into the one whose variable it reads; one that reads the variables of several of them is warned too: an occurrence comes in on one port and writes that one only (write one event per port: `MAA:2<a == "x"> or MAA:2<b == "y">`).',
         example: 'R: [elapsed=1ms] subscribe MAA:2 =* :2 [MAA:2<failure.datavalue == 3>]   // failure is the variable of :3'
     },
     'supervisor-activation-cycle': {
