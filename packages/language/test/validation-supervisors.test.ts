@@ -171,6 +171,31 @@ describe('supervisors: more behaviour', () => {
         expect(warned).toEqual(['Input event port :2 (connection_status) is also subscribed to MAA:2 by rule A: an input port takes one subscribe at a time, the same producer\'s too (the second is refused while the first holds it: `port :2 already subscribed`). Make sure these rules are never active at once, or subscribe once in a rule active whenever either needs the events.']);
     });
 
+    it('subscribes to one input port in rules never active together are not a conflict: one rule starts only after the end of the other, which is active once', async () => {
+        const conflicts = async (rules: string, more?: string) =>
+            (await build(sup(rules, more ? { more } : {}))).diagnostics.filter((d) => d.code === 'supervisor-subscribe-conflict').map((d) => d.message);
+        const HOLD = 'HOLD: [elapsed=1ms] subscribe MAA:2 =* :2 [elapsed=2ms]';
+        // the field test's HOLD and LAND, the same producer or another, and a chain after LAND
+        expect(await conflicts(`${HOLD}\nLAND: [endof(HOLD)] subscribe MAA:2 =* :2 [elapsed=5ms]`)).toEqual([]);
+        expect(await conflicts(`${HOLD}\nLAND: [endof(HOLD)] subscribe MAB:1 =* :2 [MAB:1]`)).toEqual([]);
+        expect(await conflicts(`${HOLD}\nLAND: [endof(HOLD)] compute doit("x", 1.0) [duration(LAND)=1ms]\nTAXI: [endof(LAND) or started(LATER)] subscribe MAA:2 =* :2 [elapsed=9ms]\nLATER: [endof(LAND)] compute doit("y", 1.0) [elapsed=9ms]`)).toEqual([]);
+        // either written first
+        expect(await conflicts(`LAND: [endof(HOLD)] subscribe MAA:2 =* :2 [elapsed=5ms]\n${HOLD}`)).toEqual([]);
+        const warned = 'Input event port :2 (connection_status) is also subscribed to MAA:2 by rule HOLD';
+        // HOLD may become active again while LAND is: on each MAA:0 event, or at 1 ms and again at 3 ms
+        for (const pre of ['MAA:0', 'elapsed=1ms or elapsed=3ms', 'elapsed=1ms{1s}']) {
+            const rules = `HOLD: [${pre}] subscribe MAA:2 =* :2 [elapsed=2ms]\nLAND: [endof(HOLD)] subscribe MAA:2 =* :2 [elapsed=5ms]`;
+            expect((await conflicts(rules))[0], pre).toContain(warned);
+        }
+        // LAND may start otherwise than at HOLD's end: another clause, an endof that persists, started(HOLD)
+        for (const pre of ['endof(HOLD) or elapsed=1500us', 'endof(HOLD){1s}', 'started(HOLD)']) {
+            expect((await conflicts(`${HOLD}\nLAND: [${pre}] subscribe MAA:2 =* :2 [elapsed=5ms]`))[0], pre).toContain(warned);
+        }
+        // one rule subscribing twice, and rules of two functions (they may run at once), are still warned
+        expect(await conflicts('HOLD: [elapsed=1ms] subscribe MAA:2 =* :2; subscribe MAA:2 =* :2 [elapsed=2ms]')).toHaveLength(1);
+        expect(await conflicts(HOLD, 'other() { rules { LAND: [elapsed=1ms] subscribe MAA:2 =* :2 [elapsed=5ms] } }')).toHaveLength(1);
+    });
+
     it('an event reading the variables of two input ports it is delivered to is warned: an occurrence writes one', async () => {
         const ports = 'in :2 string connection_status; in :4 string status2; out :1 string failure_message_type;';
         const rules = (post: string) => `HOLD: [elapsed=1ms] subscribe MAA:2 =* :2 [elapsed=2ms]\nLAND: [endof(HOLD)] subscribe MAA:2 =* :4 [${post}]`;

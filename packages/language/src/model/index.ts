@@ -7,3 +7,4 @@ export * from './schema-conflicts.js';
 export * from './constants.js';
 export * from './strings.js';
 export * from './event-in-port.js';
+export * from './rule-activity.js';

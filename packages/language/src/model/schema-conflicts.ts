@@ -9,6 +9,7 @@ import {
     type Clause, type Event, type Module, type Rule, type Schema, type SupervisionFunction
 } from '../generated/ast.js';
 import { moduleInstancesOf, rulesOf } from './blocks.js';
+import { transientRuleEvent } from './rule-activity.js';
 import { timeToNanoseconds } from './time.js';
 
 /** The resolved modules of a schema, each once, in written order. */
@@ -76,13 +77,14 @@ function startingEvents(rule: Rule): Map<string, Event> {
  * Rules whose `started` without persistence appears in a clause of `rule`'s precondition: when
  * that clause becomes true, they have just been activated and are active (docs/engines.md:
  * `started(L)` is queued after L's actions). `endof(L)` does not count: L's schemas are
- * deactivated before `endof(L)` is queued, so a rule started by it never overlaps L.
+ * deactivated before `endof(L)` is queued, so a rule started by it never overlaps L
+ * (rule-activity.ts: transientRuleEvent, RuleOverlap).
  */
 function startedBy(rule: Rule): Rule[] {
     const clauses: Clause[] = rule.precondition?.clauses ?? [];
     const rules: Rule[] = [];
     for (const event of clauses.flatMap((c) => c.events)) {
-        const other = isStartedEvent(event) && !event.persistence ? event.rule?.ref : undefined;
+        const other = transientRuleEvent(event, 'started');
         if (other && other !== rule && !rules.includes(other)) rules.push(other);
     }
     return rules;

@@ -7,10 +7,11 @@
 import { AstUtils, type ValidationAcceptor, type ValidationChecks } from 'langium';
 import {
     isActivateSupervisor, isRule, isSubscribe, isSupervisor,
-    type ActivateSupervisor, type CactalAstType, type Port, type Subscribe, type SupervisionFunction, type Supervisor
+    type ActivateSupervisor, type CactalAstType, type Port, type Rule, type Subscribe, type SupervisionFunction, type Supervisor
 } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
 import { eventPortsOf, localsOf, rulesOf } from '../model/blocks.js';
+import { RuleOverlap } from '../model/rule-activity.js';
 import { SupervisorCodes } from './codes/supervisors.js';
 import { report } from './report.js';
 import { NAME_CHARS_MAX } from './schema-checks.js';
@@ -100,22 +101,29 @@ function producerKey(s: Subscribe): string | undefined {
     return source && port ? `${source.name}:${port.index}` : undefined;
 }
 
+/**
+ * Two subscribes of the supervisor to one input port, in rules that may be active at once (any two
+ * but those the rules show never are: rule-activity.ts RuleOverlap); each subscribe is
+ * reported once, against the first earlier one its rule may be active with.
+ */
 function checkSubscribeConflicts(sup: Supervisor, accept: ValidationAcceptor): void {
-    const firstProducer = new Map<Port, { key: string; subscribe: Subscribe }>();
+    const earlier = new Map<Port, Array<{ key: string; rule: Rule | undefined }>>();
+    const overlaps = new Map<SupervisionFunction, RuleOverlap>(sup.functions.map((fn) => [fn, new RuleOverlap(fn)]));
+    const overlap = (rule: Rule) => overlaps.get(rule.$container.$container);
     for (const s of subscribesOf(sup)) {
         const target = s.targetPort?.ref;
         const key = producerKey(s);
         if (!target || !key) continue;
-        const first = firstProducer.get(target);
-        if (!first) {
-            firstProducer.set(target, { key, subscribe: s });
-            continue;
-        }
-        const rule = AstUtils.getContainerOfType(first.subscribe, isRule);
+        const rule = AstUtils.getContainerOfType(s, isRule);
+        const before = earlier.get(target) ?? [];
+        const first = before.find((b) => !(rule && b.rule && overlap(rule)?.neverActiveTogether(rule, b.rule)));
+        before.push({ key, rule });
+        earlier.set(target, before);
+        if (!first) continue;
         // the same producer twice is refused at run time too (`port :i already subscribed`): one subscription at a time
         report(accept, SupervisorCodes['supervisor-subscribe-conflict'], first.key === key
-            ? `Input event port :${target.index} (${target.name}) is also subscribed to ${key} by rule ${rule?.name ?? '?'}: an input port takes one subscribe at a time, the same producer's too (the second is refused while the first holds it: \`port :${target.index} already subscribed\`). Make sure these rules are never active at once, or subscribe once in a rule active whenever either needs the events.`
-            : `Input event port :${target.index} (${target.name}) is also subscribed to ${first.key} (rule ${rule?.name ?? '?'}): an input port has at most one producer at a time. Make sure these rules are never active at once, or use another input port for ${key}.`,
+            ? `Input event port :${target.index} (${target.name}) is also subscribed to ${key} by rule ${first.rule?.name ?? '?'}: an input port takes one subscribe at a time, the same producer's too (the second is refused while the first holds it: \`port :${target.index} already subscribed\`). Make sure these rules are never active at once, or subscribe once in a rule active whenever either needs the events.`
+            : `Input event port :${target.index} (${target.name}) is also subscribed to ${first.key} (rule ${first.rule?.name ?? '?'}): an input port has at most one producer at a time. Make sure these rules are never active at once, or use another input port for ${key}.`,
             { node: s, property: 'targetPort' });
     }
 }

@@ -18,6 +18,7 @@ import { rulesOf } from '../model/blocks.js';
 import { isNumeric, isOrdered, sameType, typeName, typeOfVariableRef, variableRefText, type CactalType } from '../model/types.js';
 import { SupervisorCodes } from './codes/supervisors.js';
 import { deliveredPorts, eventInPort, inputPortRead } from '../model/event-in-port.js';
+import { activationsBounded } from '../model/rule-activity.js';
 import { ordSchemaTestName } from '../model/ord-schema-tests.js';
 import { ProjectNames } from './project-index.js';
 import { nearName } from './unresolved-messages.js';
@@ -230,33 +231,12 @@ function checkOwnRuleEvents(rule: Rule, accept: ValidationAcceptor): void {
 const onceEvent = (e: Event): e is ElapsedEvent => isElapsedEvent(e) && !e.persistence;
 
 /**
- * Whether `rule` can become active only a bounded number of times in a run of its function: each
- * precondition clause needs a transient event that occurs at most once (an `elapsed=t`, or an
- * endof/started/duration of such a rule). A module event, a persistence, or a cycle of rules
- * (R1 on endof(R6), ..., R6 on endof(R5)) makes it recur. `seen`: the rules being decided.
- */
-function activeOnlyOnce(rule: Rule, seen = new Set<Rule>()): boolean {
-    if (seen.has(rule)) return false; // a cycle: each turn makes it active again
-    seen.add(rule);
-    const once = (e: Event): boolean => {
-        if (e.persistence) return false;
-        if (isElapsedEvent(e)) return true;
-        const other = (isEndofEvent(e) || isStartedEvent(e) || isDurationEvent(e)) ? e.rule?.ref : undefined;
-        return other !== undefined && activeOnlyOnce(other, seen);
-    };
-    const clauses = rule.precondition?.clauses ?? [];
-    const result = clauses.length > 0 && clauses.every((c) => c.events.some(once));
-    seen.delete(rule);
-    return result;
-}
-
-/**
  * A rule that only `elapsed` ends (each postcondition clause waits for a transient `elapsed=t`)
- * and that may become active again (activeOnlyOnce): after its first activation nothing ends it.
+ * and that may become active again (activationsBounded): after its first activation nothing ends it.
  */
 function checkElapsedOnce(rule: Rule, accept: ValidationAcceptor): void {
     const post = rule.postcondition?.clauses ?? [];
-    if (post.length === 0 || !post.every((c) => c.events.some(onceEvent)) || activeOnlyOnce(rule)) return;
+    if (post.length === 0 || !post.every((c) => c.events.some(onceEvent)) || activationsBounded(rule)) return;
     const again = (rule.precondition?.clauses ?? []).find((c) => !c.events.some(onceEvent)) ?? rule.precondition?.clauses[0];
     const cause = again?.$cstNode?.text.replace(/\s+/g, ' ') ?? 'its precondition';
     for (const event of post.flatMap((c) => c.events).filter(onceEvent)) {
