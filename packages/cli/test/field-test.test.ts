@@ -183,6 +183,18 @@ describe('3. contract run: one run per logs folder', () => {
         expect(third.movedAside).toEqual({ folder: join(out, 'previous', 'run-2026-12-01T10-00-07-2'), files: 1 });
     });
 
+    it("a crashed module's crash file is saved with the logs, and moved aside with them at the next run (a .crash of another name, or a note of yours, left alone)", async () => {
+        const out = join(root, 'crash-file');
+        const report = 'contract crash report: module EST, signal 11\n';
+        const first = await saveLogs(artifacts({ 'EST_1-Dec-2026-10h00m00s.csv': moduleLog('EST', 1, true), 'EST.crash': report, 'not-a-module!.crash': 'x', 'EST.core': 'x' }), out, true);
+        expect(first.saved).toEqual(['EST.crash', 'EST_1-Dec-2026-10h00m00s.csv']);
+        expect(readFileSync(join(out, 'EST.crash'), 'utf8')).toBe(report);
+        writeFileSync(join(out, 'mine.crash.txt'), 'mine');
+        const second = await saveLogs(artifacts({ 'EST_2-Dec-2026-10h00m00s.csv': moduleLog('EST', 2) }), out, true);
+        expect(second.movedAside?.files).toBe(2);
+        expect(readdirSync(out).sort()).toEqual(['EST_2-Dec-2026-10h00m00s.csv', 'mine.crash.txt', 'previous']);
+    });
+
     it('two runs ending at once into one logs folder (two projects, one --logs): one run\'s logs stay, the other\'s and the earlier run\'s are moved aside whole, none lost or mixed', async () => {
         for (let round = 0; round < 10; round++) {
             const out = join(root, `shared-${round}`);

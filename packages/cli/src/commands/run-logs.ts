@@ -15,6 +15,10 @@ import { createGunzip } from 'node:zlib';
 import type { Artifact, RunArtifacts } from '@contract-studio/build-service';
 import { safeName } from '../terminal-text.js';
 import { isLogFileName } from '@contract-studio/build-service/trace';
+import { crashFileModule } from '@contract-studio/build-service/crash-files';
+
+/** A file of a run's logs folder: a module's CSV log, or the crash file of a module that crashed (`<MODULE>.crash`, docs/runtime-api.md "Crash file"). */
+const isRunLogFile = (name: string) => isLogFileName(name) || crashFileModule(name) !== undefined;
 
 /**
  * Why the default logs folder (DIR/logs) cannot be written, or null. It is a name in the project
@@ -85,7 +89,7 @@ async function openSubfolder(parent: fsp.FileHandle, name: string, exclusive: bo
 }
 
 /**
- * One run per logs folder: the CSV logs (regular `*.csv` files, isLogFileName) already in the
+ * One run per logs folder: the CSV logs and crash files (regular `*.csv` and `<MODULE>.crash` files) already in the
  * folder open as `dir` — the previous run's — are moved into `previous/run-<time of the newest>/`
  * (never deleted; a link or anything else there is left alone). Returns that folder and the
  * number moved, or null when there was none.
@@ -94,7 +98,7 @@ async function moveAsidePrevious(dir: fsp.FileHandle, to: string): Promise<Saved
     const here = `/proc/self/fd/${dir.fd}`;
     const old: { name: string; mtime: number }[] = [];
     for (const name of await fsp.readdir(here)) {
-        if (!isLogFileName(name)) continue;
+        if (!isRunLogFile(name)) continue;
         const st = await fsp.lstat(`${here}/${name}`).catch(() => null);
         if (st?.isFile()) old.push({ name, mtime: st.mtimeMs });
     }
@@ -156,7 +160,7 @@ async function holdingLogsFolder<T>(dir: fsp.FileHandle, shownAs: string, work: 
 }
 
 /**
- * Writes the run's CSV logs, as the build service collected them out of the sandbox (any sandbox:
+ * Writes the run's CSV logs and crash files, as the build service collected them out of the sandbox (any sandbox:
  * `job.artifacts`), into `to`, after moving the previous run's logs there aside (one run per
  * folder: `contract trace OUT` tells this run). Never writes through a link found there (the
  * folder itself, when `noFollowDir`, opened O_NOFOLLOW and written through its descriptor: a link
@@ -165,7 +169,8 @@ async function holdingLogsFolder<T>(dir: fsp.FileHandle, shownAs: string, work: 
  */
 export async function saveLogs(artifacts: RunArtifacts | null, to: string, noFollowDir: boolean): Promise<SavedLogs> {
     const result: SavedLogs = { saved: [], refused: [], movedAside: null };
-    const files = (artifacts?.files ?? []).filter((f) => /^[\w.-]+\.csv$/.test(f.name));
+    // the CSV logs and the crash files (contract trace OUT tells where a module crashed from its crash file)
+    const files = (artifacts?.files ?? []).filter((f) => /^[\w.-]+\.csv$/.test(f.name) || crashFileModule(f.name) !== undefined);
     if (!files.length) return result;
     await fsp.mkdir(to, { recursive: true });
     const dir = await fsp.open(to, constants.O_RDONLY | constants.O_DIRECTORY | (noFollowDir ? constants.O_NOFOLLOW : 0));
