@@ -10,8 +10,11 @@
 setup:
 	bash scripts/setup.sh
 
+# make start PROJECT=path/to/project PORT=7410: another project or port (the tutorial on 7400 by
+# default); taken from make's command line only (a PORT or PROJECT of the shell's environment is not)
+given = $(if $(filter command line,$(origin $(1))),$($(1)))
 start: setup
-	node packages/cli/bin/contract.js serve examples/tutorial
+	node packages/cli/bin/contract.js serve "$(or $(call given,PROJECT),examples/tutorial)" $(if $(call given,PORT),--port "$(PORT)")
 
 test: setup
 	node scripts/run-tests.mjs
