@@ -16,3 +16,4 @@ export * from './limit-option.js';
 export * from './stuck-advice.js';
 export * from './histogram-quantile.js';
 export * from './runtime-parts.js';
+export * from './stdin-entry.js';

@@ -9,6 +9,7 @@ import { posix } from 'node:path';
 import { checkRelativePath, readFileHeadNoFollow, syncFileNoFollow, UnsafePathError, type Owner } from '../util/safe-fs.js';
 import type { ProjectSource } from './prepare.js';
 import { PrepareError } from './prepare.js';
+import { STDIN_MODULE_NAME, emptyStdinEntries } from '@contract-studio/conventions';
 
 /** The largest stdin file a run is given (a module's commands, not data). */
 export const STDIN_FILE_BYTES = 1024 * 1024;
@@ -16,15 +17,12 @@ export const STDIN_FILE_BYTES = 1024 * 1024;
 /** The work dir's folder of the stdin files (one per module, named after it). */
 export const STDIN_DIR = '.contract-stdin';
 
-/** A module name as the architecture spells it (and as make's variable STDIN_<NAME> takes it). */
-const MODULE_NAME = /^[A-Za-z_][A-Za-z0-9_]{0,63}$/;
-
 /** The `stdin` field of a request checked: module name -> project-relative path; an Error naming what is wrong. */
 export function parseStdinField(raw: unknown): Record<string, string> {
   if (!raw || typeof raw !== 'object' || Array.isArray(raw)) throw new Error('stdin must be an object module name -> a file of the project, e.g. {"MAA": "commands.txt"}');
-  const out: Record<string, string> = {};
+  const out = emptyStdinEntries();
   for (const [name, file] of Object.entries(raw as Record<string, unknown>)) {
-    if (!MODULE_NAME.test(name)) throw new Error(`stdin: ${JSON.stringify(name.slice(0, 80))} is no module name`);
+    if (!STDIN_MODULE_NAME.test(name)) throw new Error(`stdin: ${JSON.stringify(name.slice(0, 80))} is no module name`);
     if (typeof file !== 'string') throw new Error(`stdin.${name} must be the path of a file of the project`);
     try {
       out[name] = checkRelativePath(file);

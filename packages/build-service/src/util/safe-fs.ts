@@ -19,6 +19,7 @@ import { spawn } from 'node:child_process';
 import { constants, promises as fsp } from 'node:fs';
 import type { FileHandle } from 'node:fs/promises';
 import { dirname, join, relative, resolve, sep } from 'node:path';
+import { relativePathProblem } from '@contract-studio/conventions';
 
 export class UnsafePathError extends Error {}
 
@@ -29,14 +30,9 @@ export interface Owner {
 
 /** `rel` must be a relative POSIX path without `..`, NUL, or empty components. */
 export function checkRelativePath(rel: string): string {
-  if (typeof rel !== 'string' || rel.length === 0 || rel.length > 4096) throw new UnsafePathError('empty or too long path');
-  if (rel.includes('\0') || rel.includes('\\')) throw new UnsafePathError(`invalid character in path "${rel}"`);
-  if (rel.startsWith('/')) throw new UnsafePathError(`absolute path not allowed: "${rel}"`);
-  const parts = rel.split('/');
-  for (const p of parts) {
-    if (p === '' || p === '.' || p === '..') throw new UnsafePathError(`path "${rel}" has an empty, "." or ".." component`);
-  }
-  return parts.join('/');
+  const problem = relativePathProblem(rel);
+  if (problem) throw new UnsafePathError(problem);
+  return rel;
 }
 
 /**

@@ -17,7 +17,7 @@ import { StoryTeller } from '@contract-studio/build-service/trace';
 import { LiveTrace, settleTraceFile } from '../live-trace.js';
 import { traceNameProblem } from '../trace-files.js';
 import { CLI_BUILD_SECONDS, CLI_RUN_ROOM_SECONDS, COMMON_FLAGS, COMMON_REPEATABLE, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, LIMIT_USAGE, onTerminal, parseJobOptions, parseLimitOptions, reportBuild, runJob } from '../job-runner.js';
-import { MIN_READY_TIMEOUT_SECONDS, cpuMissingFrom, isCpuList } from '@contract-studio/conventions';
+import { MIN_READY_TIMEOUT_SECONDS, addStdinEntry, cpuMissingFrom, emptyStdinEntries, isCpuList } from '@contract-studio/conventions';
 import { closestName } from '@contract-studio/language/near-names';
 import { safeName } from '../terminal-text.js';
 import { refusedDefaultLogs, refusedLogsOut, refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';
@@ -72,12 +72,10 @@ export function bareDurationWarning(option: string, text: string): string | null
 /** The `--stdin MODULE=FILE` options as module -> file (the build service checks the file: inside the project, a regular file, its size). */
 function stdinFiles(values: readonly string[]): Record<string, string> | undefined {
     if (!values.length) return undefined;
-    const out: Record<string, string> = {};
+    const out = emptyStdinEntries();
     for (const v of values) {
-        const m = /^([A-Za-z_][A-Za-z0-9_]*)=(.+)$/.exec(v);
-        if (!m) throw new UsageError(`bad --stdin '${v}': expected MODULE=FILE (e.g. --stdin MAA=commands.txt, FILE a file of the project)`);
-        if (out[m[1]!] !== undefined) throw new UsageError(`--stdin ${m[1]}: given twice`);
-        out[m[1]!] = m[2]!;
+        const refused = addStdinEntry(out, v);
+        if (refused) throw new UsageError(`bad --stdin '${v}': ${refused}`);
     }
     return out;
 }
