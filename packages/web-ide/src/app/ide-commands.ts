@@ -47,7 +47,7 @@ export function registerIdeCommands(p: IdeParts): CommandRegistry {
     { id: 'generate', label: 'Generate All', keys: ['Ctrl+Shift+G'], run: () => p.generator.generate() },
     { id: 'run', label: 'Build & Run', keys: ['Ctrl+Shift+B'], run: () => p.runs.run() },
     { id: 'stop', label: 'Stop the running job', keys: ['Alt+Shift+S'], run: () => p.runs.stop() },
-    { id: 'runSettings', label: 'Run settings: duration, start request, init time, CPUs, real-time', run: () => p.runs.editSettings() },
+    { id: 'runSettings', label: 'Run settings: duration, start request, init time, CPUs, stdin, real-time', run: () => p.runs.editSettings() },
     { id: 'architecture', label: 'Open Architecture diagram', keys: ['Alt+Shift+D'], run: () => p.views.openArchitectureFocused() },
     { id: 'timeline', label: 'Open Timeline', keys: ['Alt+Shift+T'], run: () => p.views.openTimeline() },
     { id: 'monitor', label: 'Open Monitor', keys: ['Alt+Shift+M'], run: () => p.openMonitor() },

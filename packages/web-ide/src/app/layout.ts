@@ -12,7 +12,7 @@ export function createLayout(root: HTMLElement) {
     generate: btn('btn-generate', '⚙', 'Generate All', 'Generate the C tree (Ctrl+Shift+G)', 'accent'),
     run: btn('btn-run', '▶', 'Build & Run', 'Build in the sandbox and run the architecture (Ctrl+Shift+B)', 'run'),
     stop: btn('btn-stop', '■', 'Stop', 'Stop the running job (Alt+Shift+S)', 'stop'),
-    runSettings: btn('btn-run-settings', '⚙', '', 'Run settings: duration, start request, init time, CPUs, real-time'),
+    runSettings: btn('btn-run-settings', '⚙', '', 'Run settings: duration, start request, init time, CPUs, stdin, real-time'),
     arch: btn('btn-arch', '⬡', 'Architecture', 'Architecture diagram of the schemas (Alt+Shift+D)'),
     timeline: btn('btn-timeline', '▤', 'Timeline', 'Module activations per period from the run logs (Alt+Shift+T)'),
     monitor: btn('btn-monitor', '◉', 'Monitor', 'Watch the run: rules, schemas, deadlines (live during Build & Run, replay after) (Alt+Shift+M)'),

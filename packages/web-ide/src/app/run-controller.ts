@@ -6,6 +6,7 @@ import { askFields } from '../util/dialog.js';
 import { toast } from '../util/toast.js';
 import { Emitter } from '../util/emitter.js';
 import { reportError } from './report-error.js';
+import { parseStdinSetting, stdinSettingText } from './stdin-setting.js';
 import { MIN_READY_TIMEOUT_SECONDS, isCpuList } from '@contract-studio/conventions';
 import type { SharedJob } from '../../server/api-types.js';
 
@@ -24,9 +25,10 @@ const JOB_ID = /^[A-Za-z0-9_-]{1,100}$/;
  * Kept in the browser, one set for the server's origin: the duration, CPUs and real-time go for
  * every project; the start request (it names the project's own supervisor) only for the project it
  * was saved for (`startFor`: the workspace root and project folder; a value saved without one, by
- * an older version, goes for any).
+ * an older version, goes for any); the stdin files (`MODULE=path, ...`: that project's modules and
+ * files) likewise, only for `stdinFor`.
  */
-type RunSettings = { duration: number; start?: string; readyTimeout?: number; cpus?: string; realtime?: boolean };
+type RunSettings = { duration: number; start?: string; readyTimeout?: number; cpus?: string; realtime?: boolean; stdin?: string };
 /**
  * The job a tab follows or followed last, whether it had ended (a reload shows it again), whether
  * this tab stopped it, for a job another tab started, what it was (its status says so again
@@ -43,10 +45,11 @@ const isReadyTimeout = (v: unknown): v is number => typeof v === 'number' && Num
 /** The run settings for the project at `where` (`root/project`). */
 function runSettings(where: string): RunSettings {
   try {
-    const v = JSON.parse(localStorage.getItem(RUN_SETTINGS_KEY) ?? '{}') as Partial<RunSettings> & { startFor?: unknown };
+    const v = JSON.parse(localStorage.getItem(RUN_SETTINGS_KEY) ?? '{}') as Partial<RunSettings> & { startFor?: unknown; stdinFor?: unknown };
     const start = v.start && (v.startFor === undefined || v.startFor === where) ? v.start : undefined;
+    const stdin = typeof v.stdin === 'string' && v.stdin && v.stdinFor === where ? v.stdin : undefined;
     const readyTimeout = isReadyTimeout(v.readyTimeout) ? v.readyTimeout : undefined;
-    return { duration: v.duration ?? 10, start, readyTimeout, cpus: v.cpus || undefined, realtime: v.realtime === true || undefined };
+    return { duration: v.duration ?? 10, start, readyTimeout, cpus: v.cpus || undefined, realtime: v.realtime === true || undefined, stdin };
   } catch {
     return { duration: 10 };
   }
@@ -197,8 +200,9 @@ export class RunController {
     try {
       await workspace.saveAll();
       this.project = this.d.project();
-      const settings = runSettings(this.where(this.project));
-      await build.start(this.project ? `${workspace.root}/${this.project}` : workspace.root, 'run', settings.duration, settings.start, settings.cpus, settings.realtime, settings.readyTimeout);
+      const { stdin, ...settings } = runSettings(this.where(this.project));
+      // a bad entry (one kept by an older page, or edited by hand) is said before anything is submitted
+      await build.start(this.project ? `${workspace.root}/${this.project}` : workspace.root, 'run', { ...settings, stdin: parseStdinSetting(stdin ?? '') });
     } catch (e) {
       reportError(e);
       build.append({ t: Date.now(), step: 'prepare', source: 'service', stream: 'system', line: `could not start: ${(e as Error).message}` });
@@ -233,6 +237,7 @@ export class RunController {
       { key: 'start', label: "Start request (START=), empty = the generator's default (first function of the top supervisor)", value: cur.start ?? '', hint: 'SUPERVISOR.function(parameter = value, ...)' },
       { key: 'readyTimeout', label: "Time every module's init may take before the start request (seconds; READY_TIMEOUT=), empty = 10: a module not ready by then stops the run", value: cur.readyTimeout === undefined ? '' : String(cur.readyTimeout), hint: '10' },
       { key: 'cpus', label: 'Pin every module to these CPUs (CPUS=; steadier periods), empty = the system places them', value: cur.cpus ?? '', hint: '1 or 0-1' },
+      { key: 'stdin', label: "Stdin: a module reads a file of the project on its stdin (MODULE=path, the path from the project folder; commas between), empty = every module reads /dev/null", value: cur.stdin ?? '', hint: 'MAA=commands.txt, MSC=input/msc.txt' },
       { key: 'realtime', label: 'Real-time: modules take their SCHED_FIFO priorities in the sandbox, bounded (refused, saying why, where the host cannot grant it)', value: cur.realtime ? 'yes' : '', checkbox: true },
     ]);
     if (!r) return;
@@ -243,9 +248,17 @@ export class RunController {
     if (readyTimeout !== undefined && !isReadyTimeout(readyTimeout)) return toast('error', `The init time must be a number of seconds, ${MIN_READY_TIMEOUT_SECONDS} or more, not "${readyText}"`);
     const cpus = (r.cpus ?? '').trim();
     if (cpus && !isCpuList(cpus)) return toast('error', `CPUs must be a list such as 1, 0-1 or 0,2, not "${cpus}"`);
+    let stdin: Record<string, string>;
+    try {
+      stdin = parseStdinSetting(r.stdin ?? '');
+    } catch (e) {
+      return toast('error', `${(e as Error).message}; the run settings were not saved`);
+    }
+    const stdinText = stdinSettingText(stdin);
     const realtime = r.realtime === 'yes';
-    localStorage.setItem(RUN_SETTINGS_KEY, JSON.stringify({ duration, start: r.start, ...(r.start ? { startFor: where } : {}), ...(readyTimeout !== undefined ? { readyTimeout } : {}), ...(cpus ? { cpus } : {}), ...(realtime ? { realtime } : {}) }));
-    toast('info', `Runs last ${duration} s${r.start ? `, start ${r.start}` : ''}${readyTimeout !== undefined ? `, inits get ${readyTimeout} s` : ''}${cpus ? `, modules on CPUs ${cpus}` : ''}${realtime ? ', real-time priorities' : ''}`);
+    localStorage.setItem(RUN_SETTINGS_KEY, JSON.stringify({ duration, start: r.start, ...(r.start ? { startFor: where } : {}), ...(readyTimeout !== undefined ? { readyTimeout } : {}), ...(cpus ? { cpus } : {}), ...(stdinText ? { stdin: stdinText, stdinFor: where } : {}), ...(realtime ? { realtime } : {}) }));
+    const reads = Object.entries(stdin).map(([module, file]) => `, ${module} reads ${file}`).join('');
+    toast('info', `Runs last ${duration} s${r.start ? `, start ${r.start}` : ''}${readyTimeout !== undefined ? `, inits get ${readyTimeout} s` : ''}${cpus ? `, modules on CPUs ${cpus}` : ''}${reads}${realtime ? ', real-time priorities' : ''}`);
   }
 
   private async fetchLogs(jobId: string): Promise<void> {

@@ -19,6 +19,18 @@ export interface GccDiagnostic {
   protectedRegion?: { id: string } | null;
 }
 
+/** What a job is asked to do beside its action (the run settings: docs/build-service-api.md, the job request). */
+export interface JobOptions {
+  /** Seconds (default 10). */
+  duration?: number;
+  start?: string;
+  cpus?: string;
+  realtime?: boolean;
+  readyTimeout?: number;
+  /** Module -> a file of the project it reads on its stdin. */
+  stdin?: Record<string, string>;
+}
+
 /** The line a job's log ends with when it was cancelled without this tab's Stop. */
 export const CANCELLED_ELSEWHERE =
   'cancelled, not by this tab: by another tab (its Stop, or its Build & Run, which replaces the run it follows) or a request to the build service';
@@ -178,21 +190,25 @@ export class BuildPanel {
    * asked one after the other are submitted one after the other; a Stop asked after a start that
    * is not submitted yet drops it.
    */
-  start(projectDir: string, action: 'build' | 'run', duration = 10, start?: string, cpus?: string, realtime?: boolean, readyTimeout?: number): Promise<void> {
+  start(projectDir: string, action: 'build' | 'run', opts: JobOptions = {}): Promise<void> {
     const asked = ++this.startsAsked;
-    const next = this.starting.catch(() => undefined).then(() => (asked <= this.stoppedStarts ? undefined : this.submitAndFollow(asked, projectDir, action, duration, start, cpus, realtime, readyTimeout)));
+    const next = this.starting.catch(() => undefined).then(() => (asked <= this.stoppedStarts ? undefined : this.submitAndFollow(asked, projectDir, action, opts)));
     this.starting = next;
     return next;
   }
 
-  private async submitAndFollow(asked: number, projectDir: string, action: 'build' | 'run', duration: number, start?: string, cpus?: string, realtime?: boolean, readyTimeout?: number): Promise<void> {
+  private async submitAndFollow(asked: number, projectDir: string, action: 'build' | 'run', opts: JobOptions): Promise<void> {
     if (this.jobId) await this.cancelFollowed();
     this.clear();
     this.setStatus('submitting', undefined, true);
     this.submitting = true;
     let job;
     try {
-      job = await api.submitJob({ action, project: { dir: projectDir }, kind: 'cactal', duration, ...(start ? { start } : {}), ...(readyTimeout ? { readyTimeout } : {}), ...(cpus ? { cpus } : {}), ...(realtime ? { realtime } : {}) });
+      const { duration = 10, start, readyTimeout, cpus, realtime, stdin } = opts;
+      job = await api.submitJob({
+        action, project: { dir: projectDir }, kind: 'cactal', duration, ...(start ? { start } : {}), ...(readyTimeout ? { readyTimeout } : {}), ...(cpus ? { cpus } : {}),
+        ...(realtime ? { realtime } : {}), ...(stdin && Object.keys(stdin).length ? { stdin } : {}),
+      });
     } finally {
       this.submitting = false;
     }

@@ -137,7 +137,7 @@ describe('keyboard-first IDE', () => {
     await page.keyboard.press('F1');
     await palette.waitFor({ timeout: 5000 });
     await page.keyboard.type('run settings');
-    expect(await palette.locator('[role=option][aria-selected=true] .qp-label').textContent()).toBe('Run settings: duration, start request, init time, CPUs, real-time');
+    expect(await palette.locator('[role=option][aria-selected=true] .qp-label').textContent()).toBe('Run settings: duration, start request, init time, CPUs, stdin, real-time');
     await page.keyboard.press('Enter');
     const dialog = page.locator('.dialog-overlay .dialog');
     await dialog.waitFor({ timeout: 5000 });
