@@ -2,7 +2,7 @@ import type { BuildPanel } from '../build/build-panel.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { fetchJobLogs, type RunLogs } from '../views/run-logs.js';
 import { jobStatusText } from '../build/job-end.js';
-import { askFields } from '../util/dialog.js';
+import { askFields, type FieldsProblem } from '../util/dialog.js';
 import { toast } from '../util/toast.js';
 import { Emitter } from '../util/emitter.js';
 import { reportError } from './report-error.js';
@@ -232,6 +232,21 @@ export class RunController {
   async editSettings(): Promise<void> {
     const where = this.where(this.d.project());
     const cur = runSettings(where);
+    /** The dialog's values read, or what is wrong (the dialog then stays open on that field, nothing saved). */
+    const read = (r: Record<string, string>): { problem: FieldsProblem } | { duration: number; readyTimeout?: number; cpus: string; stdin: Record<string, string> } => {
+      const duration = Number(r.duration);
+      if (!Number.isFinite(duration) || duration <= 0) return { problem: { key: 'duration', message: `Duration must be a positive number of seconds, not "${r.duration}"` } };
+      const readyText = (r.readyTimeout ?? '').trim();
+      const readyTimeout = readyText ? Number(readyText) : undefined;
+      if (readyTimeout !== undefined && !isReadyTimeout(readyTimeout)) return { problem: { key: 'readyTimeout', message: `The init time must be a number of seconds, ${MIN_READY_TIMEOUT_SECONDS} or more, not "${readyText}"` } };
+      const cpus = (r.cpus ?? '').trim();
+      if (cpus && !isCpuList(cpus)) return { problem: { key: 'cpus', message: `CPUs must be a list such as 1, 0-1 or 0,2, not "${cpus}"` } };
+      try {
+        return { duration, readyTimeout, cpus, stdin: parseStdinSetting(r.stdin ?? '') };
+      } catch (e) {
+        return { problem: { key: 'stdin', message: (e as Error).message } };
+      }
+    };
     const r = await askFields('Run settings', [
       { key: 'duration', label: 'Duration of a run (seconds, capped by the build service)', value: String(cur.duration) },
       { key: 'start', label: "Start request (START=), empty = the generator's default (first function of the top supervisor)", value: cur.start ?? '', hint: 'SUPERVISOR.function(parameter = value, ...)' },
@@ -239,21 +254,14 @@ export class RunController {
       { key: 'cpus', label: 'Pin every module to these CPUs (CPUS=; steadier periods), empty = the system places them', value: cur.cpus ?? '', hint: '1 or 0-1' },
       { key: 'stdin', label: "Stdin: a module reads a file of the project on its stdin (MODULE=path, the path from the project folder; commas between), empty = every module reads /dev/null", value: cur.stdin ?? '', hint: 'MAA=commands.txt, MSC=input/msc.txt' },
       { key: 'realtime', label: 'Real-time: modules take their SCHED_FIFO priorities in the sandbox, bounded (refused, saying why, where the host cannot grant it)', value: cur.realtime ? 'yes' : '', checkbox: true },
-    ]);
+    ], (values) => {
+      const v = read(values);
+      return 'problem' in v ? v.problem : undefined;
+    });
     if (!r) return;
-    const duration = Number(r.duration);
-    if (!Number.isFinite(duration) || duration <= 0) return toast('error', `Duration must be a positive number of seconds, not "${r.duration}"`);
-    const readyText = (r.readyTimeout ?? '').trim();
-    const readyTimeout = readyText ? Number(readyText) : undefined;
-    if (readyTimeout !== undefined && !isReadyTimeout(readyTimeout)) return toast('error', `The init time must be a number of seconds, ${MIN_READY_TIMEOUT_SECONDS} or more, not "${readyText}"`);
-    const cpus = (r.cpus ?? '').trim();
-    if (cpus && !isCpuList(cpus)) return toast('error', `CPUs must be a list such as 1, 0-1 or 0,2, not "${cpus}"`);
-    let stdin: Record<string, string>;
-    try {
-      stdin = parseStdinSetting(r.stdin ?? '');
-    } catch (e) {
-      return toast('error', `${(e as Error).message}; the run settings were not saved`);
-    }
+    const v = read(r);
+    if ('problem' in v) return; // checked by the dialog
+    const { duration, readyTimeout, cpus, stdin } = v;
     const stdinText = stdinSettingText(stdin);
     const realtime = r.realtime === 'yes';
     localStorage.setItem(RUN_SETTINGS_KEY, JSON.stringify({ duration, start: r.start, ...(r.start ? { startFor: where } : {}), ...(readyTimeout !== undefined ? { readyTimeout } : {}), ...(cpus ? { cpus } : {}), ...(stdinText ? { stdin: stdinText, stdinFor: where } : {}), ...(realtime ? { realtime } : {}) }));

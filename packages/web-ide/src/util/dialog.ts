@@ -58,7 +58,17 @@ export function confirmAction(title: string, detail: string, okLabel = 'Delete')
  * A small form of labelled fields (text, or a checkbox with `checkbox: true`, read as "yes" or "");
  * resolves the values, or null when cancelled.
  */
-export function askFields(title: string, fields: Array<{ key: string; label: string; value: string; hint?: string; checkbox?: boolean }>): Promise<Record<string, string> | null> {
+/** What is wrong with a dialog's values: said in the dialog, which stays open on the field `key` (what was typed kept). */
+export interface FieldsProblem {
+  key?: string;
+  message: string;
+}
+
+export function askFields(
+  title: string,
+  fields: Array<{ key: string; label: string; value: string; hint?: string; checkbox?: boolean }>,
+  check?: (values: Record<string, string>) => FieldsProblem | undefined,
+): Promise<Record<string, string> | null> {
   return new Promise((resolve) => {
     const inputs = fields.map((f) =>
       f.checkbox
@@ -67,9 +77,19 @@ export function askFields(title: string, fields: Array<{ key: string; label: str
     );
     const valueOf = (i: HTMLInputElement) => (i.type === 'checkbox' ? (i.checked ? 'yes' : '') : i.value.trim());
     let modal: { close(): void } | undefined;
+    // a refused Save is said here, the dialog left open with what was typed (an alert: read out at once)
+    const problemLine = h('div', { class: 'dialog-problem', role: 'alert' });
     const done = (ok: boolean) => {
       if (!modal) return;
       const values = Object.fromEntries(inputs.map((i, n) => [fields[n]!.key, valueOf(i)]));
+      const problem = ok && check ? check(values) : undefined;
+      if (problem) {
+        problemLine.textContent = problem.message;
+        const at = inputs.find((i) => i.dataset['key'] === problem.key);
+        for (const i of inputs) i.toggleAttribute('aria-invalid', i === at);
+        (at ?? inputs[0])?.focus();
+        return;
+      }
       modal.close();
       modal = undefined;
       resolve(ok ? values : null);
@@ -83,6 +103,7 @@ export function askFields(title: string, fields: Array<{ key: string; label: str
     }
     const dialog = h('div', { class: 'dialog', 'aria-label': title }, h('div', { class: 'dialog-title' }, title),
       ...fields.flatMap((f, n) => (f.checkbox ? [h('label', { class: 'dialog-hint dialog-check-row' }, inputs[n]!, ` ${f.label}`)] : [h('label', { class: 'dialog-hint' }, f.label), inputs[n]!])),
+      problemLine,
       h('div', { class: 'dialog-buttons' }, h('button', { class: 'btn', onclick: () => done(false) }, 'Cancel'), h('button', { class: 'btn primary', onclick: () => done(true) }, 'Save')));
     const overlay = h('div', { class: 'dialog-overlay' }, dialog);
     modal = openModal(overlay, dialog, { onEscape: () => done(false), initialFocus: () => inputs[0]?.focus() });

@@ -53,8 +53,8 @@ describe.skipIf(!canBuild)("a module's stdin from a file of the project, from th
   });
   const jobStatus = () => s.page.locator('#status-job').getAttribute('data-status');
 
-  /** Opens the run settings from the ⚙ with the keyboard, sets the duration, types `stdin` in the Stdin field (Tab to it), Enter. */
-  async function setWithKeyboard(stdin: string): Promise<void> {
+  /** Opens the run settings from the ⚙ with the keyboard, sets the duration, types `stdin` in the Stdin field (Tab to it), Enter; `refused`: the dialog stays open, saying it. */
+  async function setWithKeyboard(stdin: string, refused?: string): Promise<void> {
     const { page } = s;
     await page.locator('#btn-run-settings').focus();
     await page.keyboard.press('Enter');
@@ -68,14 +68,23 @@ describe.skipIf(!canBuild)("a module's stdin from a file of the project, from th
     await page.keyboard.press('Control+A');
     await page.keyboard.type(stdin);
     await page.keyboard.press('Enter');
+    if (refused === undefined) {
+      await expect.poll(() => page.locator('.dialog-overlay').count()).toBe(0);
+      return;
+    }
+    // said in the dialog, which stays open with what was typed, the focus on the field to mend
+    await page.locator('.dialog-problem[role="alert"]', { hasText: refused }).waitFor({ timeout: 5000 });
+    expect(await page.locator('.dialog-overlay').count()).toBe(1);
+    expect(await field.inputValue()).toBe(stdin);
+    expect(await field.evaluate((el) => el === document.activeElement && el.hasAttribute('aria-invalid'))).toBe(true);
+    await page.keyboard.press('Escape');
     await expect.poll(() => page.locator('.dialog-overlay').count()).toBe(0);
   }
 
   it('MSC reads commands.txt: the entry kept for this project, sent as the run request\'s stdin, the line scanf read printed by the module', async () => {
     const { page } = s;
     // a bad entry is said at once, nothing kept
-    await setWithKeyboard('MSC=../commands.txt');
-    await page.locator('.toast.error', { hasText: 'stdin: bad entry "MSC=../commands.txt": path "../commands.txt" has an empty, "." or ".." component (a path inside the project, relative to it); the run settings were not saved' }).waitFor({ timeout: 5000 });
+    await setWithKeyboard('MSC=../commands.txt', 'stdin: bad entry "MSC=../commands.txt": path "../commands.txt" has an empty, "." or ".." component (a path inside the project, relative to it)');
     expect(await page.evaluate((k) => localStorage.getItem(k), SETTINGS)).toBeNull();
 
     await setWithKeyboard('MSC = commands.txt');
