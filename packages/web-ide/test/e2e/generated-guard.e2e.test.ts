@@ -16,6 +16,11 @@ const canGenerate = await import('@contract-studio/codegen').then((m) => typeof 
 const MAA = 'src-gen/generated/architecture/modules/MAA_mod/module.c';
 
 let s: Session;
+/** The browser's copies of unsaved edits of file `p` (browser-copy-store.ts: one entry a file and tab, key prefix + JSON [root, path, tab]), run in the page. */
+const copiesOf = (p: string) => {
+  const prefix = 'contract-studio:unsaved-copy:';
+  return Object.keys(localStorage).filter((k) => k.startsWith(prefix) && (JSON.parse(k.slice(prefix.length)) as string[])[1] === p).map((k) => localStorage.getItem(k));
+};
 const disk = (p: string) => readFileSync(join(s.workspace, p), 'utf8');
 const editModel = (from: string, to: string) => {
   const text = disk('amodule1.contract');
@@ -107,7 +112,7 @@ describe.skipIf(!canGenerate)('the server guards generated C against stale tabs'
     await shot(page, '11-stale-tab-refused');
     expect(disk(MAA)).toBe(onDisk);
     expect(await activeValue(page)).toContain('/* reacts to controlevent */');
-    const backup = await page.evaluate((p) => Object.keys(localStorage).filter((k) => k.endsWith(`:${p}`)).map((k) => localStorage.getItem(k)), MAA);
+    const backup = await page.evaluate(copiesOf, MAA);
     expect(backup).toHaveLength(1);
     expect(backup[0]).toContain('/* reacts to controlevent */');
     // no retry loop: a failed network write would be retried after 2 s
@@ -119,7 +124,7 @@ describe.skipIf(!canGenerate)('the server guards generated C against stale tabs'
     await page.locator('.dialog .btn.danger', { hasText: 'Reload' }).click();
     await expect.poll(() => activeValue(page)).toBe(onDisk);
     await waitSaved(page);
-    expect(await page.evaluate((p) => Object.keys(localStorage).filter((k) => k.endsWith(`:${p}`)).length, MAA)).toBe(0);
+    expect(await page.evaluate(copiesOf, MAA)).toHaveLength(0);
   });
 
   it('a generated file holding Latin-1 bytes (written by another editor) turns read-only when they arrive: typing in a region writes nothing over them, and the tab says why', async () => {

@@ -148,7 +148,8 @@ describe('Monitor in headless Chromium', () => {
       const m = (window as any).__ide.monitor.current;
       const d = c.getContext('2d')!.getImageData(0, 0, c.width, c.height).data;
       const px = (x: number, y: number) => { const i = (y * c.width + x) * 4; return `#${[d[i]!, d[i + 1]!, d[i + 2]!].map((v) => v.toString(16).padStart(2, '0')).join('')}`; };
-      const row: Record<string, number> = { function: 0, rule: 1, schema: 2, miss: 3, overrun: 3 };
+      // (the strip's rows: timeline-strip.ts ROW)
+      const row: Record<string, number> = { function: 0, user: 0, error: 0, unheard: 0, kept: 0, crash: 0, rule: 1, schema: 2, miss: 3, overrun: 3 };
       const col = (t: number) => Math.floor(1 + (t / Math.max(1, m.end)) * (c.width - 3));
       const cursor = col(0);
       return (m.marks as { t: number; kind: string; on?: boolean }[]).filter((k) => Math.abs(col(k.t) - cursor) > 2).map((k) => ({ kind: k.kind, on: k.on, colour: px(col(k.t), 3 + row[k.kind]! * 10 + 4) }));
@@ -787,7 +788,9 @@ describe('Monitor in headless Chromium', () => {
         await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 }).toBe(label);
         // nowhere live: the header, the run list, the time line, the follow button
         expect(await page.locator('.monitor-view').getAttribute('data-mode')).toBe('replay');
-        expect(await page.locator('.monitor-sources option:checked').textContent()).toBe(label);
+        // the run list's entry: the label, shortened at a word when long, whole in its title
+        const entry = page.locator('.monitor-sources option:checked');
+        expect([await entry.getAttribute('title') ?? await entry.textContent(), label.startsWith(((await entry.textContent()) ?? '').replace(/…$/, ''))]).toEqual([label, true]);
         expect(await page.locator('.monitor-sources option').allTextContents()).not.toContain(`Build & Run job ${job} · live`);
         await expect.poll(() => page.locator('.monitor-time').textContent()).toMatch(/^\+\d+\.\d{6} s \/ \+\d+\.\d{6} s$/);
         expect(await page.locator('#monitor-follow').textContent()).toBe('⇥ End');
