@@ -4,6 +4,7 @@
  * changes only the record count; nothing read from the trace can make it throw.
  */
 import { crashText, dataDropReason, isRule, missedTicksOf, overrunningAfter, skippedReleasesOf, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { goneModuleSign, type GoneSign } from './gone-signs.js';
 import {
   HIST_BUCKETS, histogramBucket, MAX_NAMES, RECENT_MARKS,
   type MonitorState, type Ns, type PeriodicState, type SupervisorState, type FunctionState, type FlowCount, type SchemaActivation, type ModuleState,
@@ -20,7 +21,7 @@ const MAX_STARTED = 16;
 export const FOLDED_KINDS: ReadonlySet<string> = new Set([
   'sup_rule', 'supervisor', 'module_hold', 'flow_hold', 'module_priority', 'request_received', 'scheduler',
   'ord_release', 'ord_complete', 'ord_deadline_miss', 'run_started', 'run_finished', 'module_started', 'module_exit',
-  'module_crashed', 'data_posted', 'data_dropped', 'event_posted', 'event_received', 'requests_kept', 'requests_kept_end', 'priority',
+  'module_crashed', 'data_posted', 'data_dropped', 'event_posted', 'event_received', 'requests_kept', 'requests_kept_end', 'priority', 'error',
 ]);
 
 /** What applyRecord does with a well-formed record of a kind not in FOLDED_KINDS, at time t. */
@@ -233,6 +234,33 @@ function endKept(s: MonitorState, module: string): void {
   s.supervisorChanges++;
 }
 
+/**
+ * ORD ended at `t` (its exit or crash record; or, when its log ends with no exit record, its last
+ * record: monitor-model.ts OrdEnd): no periodic schema runs any more, and ORD runs nothing.
+ * Schemas shown ended stay so (`since` kept): applied again to a state that has it, it changes nothing.
+ */
+export function endOrdSchemas(s: MonitorState, t: Ns): void {
+  for (const sc of s.schemas.values()) {
+    if (!sc.active) continue;
+    sc.active = false;
+    sc.since = t;
+  }
+  const ord = s.modules.get('ORD');
+  if (ord) ord.running = false;
+}
+
+/**
+ * A record says module `sign.module` is no longer running (gone-signs.ts), though its log wrote no
+ * end: shown gone from then on, as a crash is (a module whose end was read, or that crashed, is left as it is).
+ */
+function foldGone(s: MonitorState, sign: GoneSign, t: Ns): void {
+  const m = s.modules.get(sign.module);
+  if (!m || !m.alive || m.crashed !== undefined || m.gone !== undefined) return;
+  m.gone = `gone: ${sign.words}`;
+  m.running = false;
+  m.since = t;
+}
+
 /** Whether `k` is an `event_posted` record of an event no one received (`no subscriber`, no peer). */
 export function isUnheardEvent(k: KnownRecord): boolean {
   return k.kind === 'event_posted' && !k.peer && k.detail === 'no subscriber';
@@ -268,6 +296,10 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
   }
   const k = r as KnownRecord;
   const f = k.fields ?? {};
+  if (k.kind === 'error' || k.kind === 'scheduler') {
+    const sign = goneModuleSign(k);
+    if (sign) foldGone(s, sign, t);
+  }
   switch (k.kind) {
     case 'supervisor': {
       const sv = sup(s, k.module);
@@ -417,16 +449,11 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       if (!m.alive) m.running = false;
       if (k.kind === 'module_crashed') m.crashed = crashText(k.detail).slice(0, 120);
       else if (k.kind === 'module_started') m.crashed = undefined;
+      m.gone = undefined;
       m.since = t;
       // ORD gone (the end of a run: the launcher stops it before the supervisors, whose undos then
       // find no ORD to deactivate their schemas): no periodic schema runs any more
-      if (!m.alive && k.module === 'ORD') {
-        for (const sc of s.schemas.values()) {
-          if (!sc.active) continue;
-          sc.active = false;
-          sc.since = t;
-        }
-      }
+      if (!m.alive && k.module === 'ORD') endOrdSchemas(s, t);
       return;
     }
     case 'data_posted':

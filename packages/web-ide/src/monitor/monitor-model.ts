@@ -22,11 +22,12 @@
  * for 60 s is about 1.5 million records).
  */
 import { LogClocks, UndosToOrd, type UnservedUndos, parseRecordLine, isRule, askedToStopText, crashText, unheardEventText, ignoredUndo, keptRequestsText, missCriticalDelayNs, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
-import { FOLDED_KINDS, applyRecord, applyUnfolded, isUnheardEvent, unheardPort } from './apply-record.js';
+import { FOLDED_KINDS, applyRecord, endOrdSchemas, applyUnfolded, isUnheardEvent, unheardPort } from './apply-record.js';
 import { nameIn, scanLine, scanned } from './line-scan.js';
 import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
 import { cloneState, emptyState, type MonitorState, type Ns } from './monitor-state.js';
 import { marksIn, type Mark, type MonitorView } from './model-view.js';
+import { goneModuleSign } from './gone-signs.js';
 
 export interface MonitorModelOptions {
   checkpointEvery?: number;
@@ -304,6 +305,17 @@ export class MonitorModel implements MonitorView {
   /** The schema a release or completion line named last, and its waits (a line naming it again is matched in place). */
   private lastWaits: CycleWaits | undefined;
   private lastWaitsName = '';
+  /** Time of ORD's last record so far (undefined before its first). */
+  private ordLastT: Ns | undefined;
+  /** ORD's exit or crash record was read: its end is told by it. */
+  private ordExited = false;
+  /**
+   * ORD's log ended with no exit record (a SIGKILL, a stop that terminated it), as a reliable sign
+   * told (another module's record saying ORD has ended, or the records' end): its periodic schemas
+   * are shown ended at ORD's last record, in every state from then on (stateAt applies it to the
+   * states scrubbed back to, which the records alone do not end).
+   */
+  private ordEnd: Ns | undefined;
 
   constructor(opts: MonitorModelOptions = {}) {
     this.every = Math.max(16, opts.checkpointEvery ?? 1024);
@@ -412,15 +424,18 @@ export class MonitorModel implements MonitorView {
     if (kind === 'user' || kind === 'error') return false; // parsed, for its mark (userMark, errorMark)
     // an event a subscriber received (its peer) folds nothing: only one no one received is parsed
     const delivered = kind === 'event_posted' && scanned.comma[4]! > scanned.comma[3]! + 1;
+    const ord = scanned.comma[2]! - scanned.comma[1]! === 4 && text.startsWith('ORD', scanned.comma[1]! + 1);
     if (delivered || !FOLDED_KINDS.has(kind)) {
       if (kind === 'ord_finished') this.finishedLine(text);
       const t = this.timeOf(scanned.mono);
+      if (ord) this.ordLastT = t;
       this.keepLine(t, text, from, to, textId);
       applyUnfolded(this.live, t);
       return true;
     }
     if (HOT_KINDS.has(kind)) {
       const t = this.timeOf(scanned.mono);
+      if (ord) this.ordLastT = t;
       this.keepLine(t, text, from, to, textId);
       applyHotLine(this.live, text, t, this.t0 ?? 0);
       // a release: its module waited for in its cycle (the schema and cycle as applyHotLine read them)
@@ -466,6 +481,7 @@ export class MonitorModel implements MonitorView {
 
   /** Folds a parsed record into `live` (and the notable ones into marks). */
   private fold(t: Ns, r: TraceRecord): void {
+    if (r.kind !== 'unknown' && (r as KnownRecord).module === 'ORD') this.ordLastT = t;
     if (r.kind === 'ord_release' || r.kind === 'ord_finished' || r.kind === 'scheduler') this.followCycles(r as KnownRecord);
     if (r.kind === 'module_exit' || r.kind === 'module_crashed' || r.kind === 'module_started' || r.kind === 'scheduler') this.followGone(r as KnownRecord);
     if (NOTABLE.has(r.kind)) this.notableRecord({ t, r });
@@ -479,8 +495,40 @@ export class MonitorModel implements MonitorView {
       this.cappedMark(t, 'error', r as KnownRecord, askedToStopText);
     }
     if (r.kind !== 'unknown' && !isRule(r)) this.followUndoToOrd(t, r as KnownRecord);
+    const sign = r.kind === 'error' || r.kind === 'scheduler' ? goneModuleSign(r as KnownRecord) : undefined;
+    const wasGone = sign && this.live.modules.get(sign.module)?.gone;
     applyRecord(this.live, r, t, this.t0 ?? 0);
     if (r.kind === 'event_posted') this.markUnheard(t, r as KnownRecord);
+    if (sign) this.goneSign(t, sign.module, wasGone);
+  }
+
+  /**
+   * A record just folded said module `module` is gone (gone-signs.ts): marked on the strip as a
+   * crash is, when it is newly shown gone; ORD gone, its schemas are ended at its last record.
+   */
+  private goneSign(t: Ns, module: string, wasGone: string | undefined): void {
+    const gone = this.live.modules.get(module)?.gone;
+    if (gone !== undefined && wasGone === undefined && this.marks.length < this.maxMarks) {
+      this.marks.push({ t, kind: 'crash', where: module.slice(0, 64), label: `${module} ${gone}`.slice(0, 200) });
+    }
+    if (module === 'ORD') this.ordGone();
+  }
+
+  /**
+   * ORD ended with no exit record (ordEnd): its periodic schemas still shown active are ended at
+   * its last record, each with a mark on its row there saying why. Once; not when ORD's exit was read.
+   */
+  private ordGone(): void {
+    const at = this.ordLastT;
+    if (this.ordEnd !== undefined || this.ordExited || at === undefined) return;
+    this.ordEnd = at;
+    const ended = [...this.live.schemas].filter(([, sc]) => sc.active).map(([name]) => name);
+    endOrdSchemas(this.live, at);
+    for (const schema of ended) {
+      if (this.marks.length >= this.maxMarks) break;
+      insertMark(this.marks, { t: at, kind: 'schema', where: schema, label: `ORD gone: its log ends at this record with no exit record (killed?): ${schema} is shown ended here; whether it ran on is unknown`.slice(0, 300) });
+    }
+    this.version++;
   }
 
   /**
@@ -497,7 +545,10 @@ export class MonitorModel implements MonitorView {
   /** A record's share of the undos to ORD: ORD's exit or crash record marks those it never served (UndosToOrd.atOrdEnd). */
   private followUndoToOrd(t: Ns, k: KnownRecord): void {
     this.undos.see(k);
-    if ((k.kind === 'module_exit' || k.kind === 'module_crashed') && k.module === 'ORD') this.markUnserved(t, this.undos.atOrdEnd());
+    if ((k.kind === 'module_exit' || k.kind === 'module_crashed') && k.module === 'ORD') {
+      this.ordExited = true;
+      this.markUnserved(t, this.undos.atOrdEnd());
+    }
   }
 
   /** One mark per schema the undos left active, on its row, with the sentence `contract trace` tells. */
@@ -519,6 +570,7 @@ export class MonitorModel implements MonitorView {
     if (this.endMarked) return;
     this.endMarked = true;
     this.markUnserved(this.live.t, this.undos.atRecordsEnd());
+    this.ordGone();
   }
 
   /** The `ord_release` line applyHotLine just folded (hotRelease: its schema and cycle): its module (its peer) waited for in that cycle. */
@@ -634,6 +686,7 @@ export class MonitorModel implements MonitorView {
       }
       s.t = t;
     }
+    if (this.ordEnd !== undefined && t >= this.ordEnd) endOrdSchemas(s, this.ordEnd);
     return s;
   }
 
@@ -700,6 +753,13 @@ export class MonitorModel implements MonitorView {
     const mark = markOf(x, x.r.kind === 'ord_deadline_miss' ? this.lateOf(x.r as KnownRecord) : '');
     if (mark && this.marks.length < this.maxMarks) this.marks.push(mark);
   }
+}
+
+/** `m` put among `marks` (in time order) after those of its time: a mark of a time already passed (ORD's last record, told later). */
+function insertMark(marks: Mark[], m: Mark): void {
+  let i = marks.length;
+  while (i > 0 && marks[i - 1]!.t > m.t) i--;
+  marks.splice(i, 0, m);
 }
 
 /** Longest ORD line an overrun's mark says (a log's line is cut at 4 KiB: a forged one must not fill the tooltip). */

@@ -562,8 +562,10 @@ export class MonitorPanel {
     const running = new Set<string>();
     const noExit: string[] = [];
     const crashed: string[] = [];
+    const gone: string[] = [];
     for (const [k, m] of s.modules) {
       if (m.crashed !== undefined) crashed.push(k);
+      else if (m.gone !== undefined) gone.push(k);
       else if (atEnd && m.alive) noExit.push(k);
       else if (m.running) running.add(k);
     }
@@ -577,7 +579,7 @@ export class MonitorPanel {
     }
     if (drawDiagram) d.highlight({ active: modules, running, pulsing, used });
     if (!drawFlows) return;
-    setText(this.modulesEl, modulesText([...running], noExit, crashed));
+    setText(this.modulesEl, modulesText([...running], noExit, crashed, gone));
     this.boundEl.hidden = s.namesPastBound === 0;
     setText(this.boundEl, namesPastBoundText(s.namesPastBound));
     // deliveries: the busiest flows, with their count and last delivery
@@ -602,12 +604,13 @@ export class MonitorPanel {
 }
 
 /**
- * `Running now: MAA, MAB`, then the modules whose code crashed (`· crashed: EST`); at the end of a
+ * `Running now: MAA, MAB`, then the modules whose code crashed (`· crashed: EST`), then those gone
+ * with no record of their end (`· gone: SRT`: another module's record says so); at the end of a
  * whole run, the modules with no exit record are said as `contract trace` says them (its story's
  * `no exit record follows`), not as running.
  */
-export function modulesText(running: string[], noExit: string[], crashed: string[] = []): string {
-  const now = `Running now: ${running.sort().join(', ') || 'none'}${crashed.length ? ` · crashed: ${crashed.sort().join(', ')}` : ''}`;
+export function modulesText(running: string[], noExit: string[], crashed: string[] = [], gone: string[] = []): string {
+  const now = `Running now: ${running.sort().join(', ') || 'none'}${crashed.length ? ` · crashed: ${crashed.sort().join(', ')}` : ''}${gone.length ? ` · gone: ${gone.sort().join(', ')}` : ''}`;
   if (!noExit.length) return now;
   return `${now} · no exit record: ${noExit.sort().join(', ')} (crashed, killed, or ended by its code's exit(): the run's messages say which)`;
 }

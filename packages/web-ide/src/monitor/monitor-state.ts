@@ -143,6 +143,12 @@ export interface ModuleState {
   since: Ns;
   /** Its code crashed (its `module_crashed` record: the runtime's signal handler wrote it as the module died), in `contract trace`'s words: `crashed: signal 11 (SIGSEGV)`; gone when it is started again. */
   crashed?: string;
+  /**
+   * It wrote no end, yet another module's record says it is no longer running (killed from
+   * outside: gone-signs.ts): `gone: ORD: START request to SRT: module not running ...`; gone when
+   * its end or a start is read.
+   */
+  gone?: string;
 }
 
 export interface FlowCount {

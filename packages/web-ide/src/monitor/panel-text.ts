@@ -106,12 +106,14 @@ export function unheardEventsRow(port: string, f: FlowCount): string {
 
 /**
  * The modules whose code crashed, at the cursor (their `module_crashed` record read; a module
- * started again is no longer said): `⚠ EST crashed at +4.240958 s: signal 11 (SIGSEGV)`, one
- * sentence each, sorted by time; '' when none did.
+ * started again is no longer said): `⚠ EST crashed at +4.240958 s: signal 11 (SIGSEGV)`, and those
+ * another module's record says are gone with no record of their end (killed from outside:
+ * gone-signs.ts): `⚠ SRT gone at +3.024129 s: ORD: START request to SRT: module not running ...`;
+ * one sentence each, sorted by time; '' when none.
  */
 export function crashedModulesText(modules: ReadonlyMap<string, ModuleState>): string {
-  const crashed = [...modules].filter(([, m]) => m.crashed !== undefined).sort((a, b) => a[1].since - b[1].since);
-  return crashed.map(([name, m]) => `⚠ ${name} ${m.crashed!.replace(/^crashed: /, `crashed at ${fmtT(m.since)}: `)}`).join('\n');
+  const ended = [...modules].filter(([, m]) => m.crashed !== undefined || m.gone !== undefined).sort((a, b) => a[1].since - b[1].since);
+  return ended.map(([name, m]) => `⚠ ${name} ${(m.crashed ?? m.gone)!.replace(/^(crashed|gone): /, `$1 at ${fmtT(m.since)}: `)}`).join('\n');
 }
 
 /**

@@ -1,0 +1,32 @@
+/**
+ * Records that say a module is no longer running although its log wrote no end (it was killed
+ * from outside: a SIGKILL leaves no record of its own): ORD's, or a supervisor's, request to it
+ * that found its mailbox stale (`START request to SRT: module not running (its mailbox is stale)
+ * (Connection refused)`), a request not sent because it has ended (`STOP request to ORD: not
+ * sent, it has ended (...)`), and ORD's stuck record saying so (`stuck: SRT has not finished
+ * release #1484 after 200 periods: it is no longer running (it crashed or was killed)`: the
+ * check `contract trace` makes, stuckSaysGone).
+ */
+import { stuckSaysGone, type KnownRecord } from '@contract-studio/build-service/trace';
+
+export interface GoneSign {
+  /** The module the record says is gone. */
+  module: string;
+  /** What says it, in the record's words: `ORD: START request to SRT: module not running ...`. */
+  words: string;
+}
+
+/** `<REQUEST> request to M: module not running ...` / `... request to M: not sent, it has ended ...` (the runtime's words, core.c and sup_main.c). */
+const REQUEST_FOUND_GONE = /^[A-Z_]+ request to ([A-Za-z_][A-Za-z0-9_]{0,63}): (?:module not running|not sent, it has ended)/;
+
+/** Longest record text a sign keeps (a forged line can be 4 KiB). */
+const MAX_WORDS = 200;
+
+/** The module record `k` says is gone, or undefined. */
+export function goneModuleSign(k: KnownRecord): GoneSign | undefined {
+  let module: string | undefined;
+  if (k.kind === 'error') module = REQUEST_FOUND_GONE.exec(k.detail)?.[1];
+  else if (k.kind === 'scheduler' && k.fields?.['what'] === 'stuck' && stuckSaysGone(k.detail) && typeof k.fields['module'] === 'string') module = k.fields['module'];
+  if (!module || module === k.module) return undefined;
+  return { module, words: `${k.module}: ${k.detail}`.slice(0, MAX_WORDS) };
+}
