@@ -435,7 +435,8 @@ export class MonitorController {
     if (listing.notReadCount > listing.notRead.length) leftOut.push(`${listing.notReadCount - listing.notRead.length} more entries that are no regular file`);
     if (listing.more) leftOut.push(`${count(listing.more)} more CSV log(s) past the first ${listing.max}: a replay reads ${listing.max} at most`);
     const whole = tooLarge || listing.more ? ` — \`contract trace ${folder || '.'}\` tells a run of any length` : '';
-    const { model, leftOut: notRecords } = await recordedRun(files);
+    // a log read in part does not run to the run's end: nothing is said of what its end leaves (ORD gone, undos unserved)
+    const { model, leftOut: notRecords } = await recordedRun(files, undefined, !partly.length);
     // a log read in part (its first lines: past what the server sends of one) is said with how much, and where the rest is
     const unread = [...partly, ...notRecords];
     const counted = unreadableNote(recordCounts(model));
@@ -616,8 +617,8 @@ export class MonitorController {
  * page's other work between them: a 60 s run of a 1 kHz schema is some 840,000 records, a second
  * or more of folding, during which the page would not draw nor answer a key.
  */
-function recordedRun(files: readonly LogFile[], fileOrder?: Uint16Array): Promise<RecordedRun> {
-  return runSliced(recordedRunSteps(files, 500, undefined, undefined, fileOrder));
+function recordedRun(files: readonly LogFile[], fileOrder?: Uint16Array, whole = true): Promise<RecordedRun> {
+  return runSliced(recordedRunSteps(files, 500, undefined, undefined, fileOrder, whole));
 }
 
 function dirOf(path: string): string {

@@ -20,8 +20,8 @@ function logsOf(name: string): LogFile[] {
   return readdirSync(dir).filter((n) => n.endsWith('.csv')).map((n) => ({ name: n, text: readFileSync(join(dir, n), 'utf8') }));
 }
 
-function built(logs: LogFile[]): MonitorModel {
-  const steps: Generator<void, RecordedRun> = recordedRunSteps(logs, 7, { checkpointEvery: 64 });
+function built(logs: LogFile[], whole = true): MonitorModel {
+  const steps: Generator<void, RecordedRun> = recordedRunSteps(logs, 7, { checkpointEvery: 64 }, undefined, undefined, whole);
   let step = steps.next();
   while (!step.done) step = steps.next();
   return step.value.model;
@@ -42,6 +42,18 @@ describe('ORD killed (its log ends with no exit record)', () => {
   const ordLines = ordLog.text.trim().split('\n');
   const t0 = Number(liveLines(logs)[0]!.mono);
   const ordLast = Number(ordLines[ordLines.length - 1]!.split(',')[0]) - t0;
+
+  it('a replay of logs read in part (past the replay\'s bound): ORD\'s log ending there says nothing of ORD (sortLoop still shown active, no mark)', () => {
+    // without the one record that says ORD has ended (SUP's STOP to it, 'not sent, it has ended'): only the logs' end could say it
+    const unsaid = logs.map((l) => ({ ...l, text: l.text.split('\n').filter((line) => !line.includes('it has ended')).join('\n') }));
+    const cut = built(unsaid, false);
+    expect(activeSchemas(cut.stateAt(cut.end), CATALOGUE).map((a) => a.name)).toEqual(['sortLoop']);
+    expect(cut.marks.filter((m) => m.label.startsWith('ORD gone'))).toEqual([]);
+    // the same logs whole: their end is the run's, ORD's missing exit record is said
+    const whole = built(unsaid);
+    expect(activeSchemas(whole.stateAt(whole.end), CATALOGUE)).toEqual([]);
+    expect(whole.marks.filter((m) => m.label.startsWith('ORD gone'))).toHaveLength(1);
+  });
 
   it('a replay shows sortLoop ended, and ORD not running, from ORD\'s last record on, with a mark there', () => {
     const model = built(logs);

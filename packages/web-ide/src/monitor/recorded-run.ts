@@ -200,9 +200,11 @@ export interface RecordedRun {
  * TraceFileLogs.order: the log of each record line, an index in `files`, in the file's order):
  * their lines are folded in that order, the order `contract trace FILE` tells them in, not merged
  * by time (at one time, a simulation's causes come before their effects in the file, whatever
- * their logs' names).
+ * their logs' names). `whole` false: a log was read in part (the replay's bound), so the records'
+ * end is not the run's: what only the run's end says (ORD gone, undos it never served:
+ * MonitorModel.recordsEnded) is not said.
  */
-export function* recordedRunSteps(files: readonly LogFile[], every = 2000, options?: MonitorModelOptions, maxUnreadable = MAX_UNREADABLE_LINES, fileOrder?: Uint16Array): Generator<void, RecordedRun> {
+export function* recordedRunSteps(files: readonly LogFile[], every = 2000, options?: MonitorModelOptions, maxUnreadable = MAX_UNREADABLE_LINES, fileOrder?: Uint16Array, whole = true): Generator<void, RecordedRun> {
   const byName = files.map((_, i) => i).sort((a, b) => (files[a]!.name < files[b]!.name ? -1 : files[a]!.name > files[b]!.name ? 1 : 0));
   const sorted = byName.map((i) => files[i]!);
   const logs: LogLines[] = [];
@@ -252,7 +254,7 @@ export function* recordedRunSteps(files: readonly LogFile[], every = 2000, optio
         if (++folded % every === 0) yield;
       }
     }
-    model.recordsEnded();
+    if (whole) model.recordsEnded(); // (logs read in part: their ends are not the run's)
     return { model, leftOut };
   }
   // merge: a heap of the logs by their next line (key, then file order)
@@ -273,7 +275,7 @@ export function* recordedRunSteps(files: readonly LogFile[], every = 2000, optio
     else heap.topChanged();
     if (++folded % every === 0) yield;
   }
-  model.recordsEnded();
+  if (whole) model.recordsEnded();
   return { model, leftOut };
 }
 
