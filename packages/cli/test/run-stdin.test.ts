@@ -68,6 +68,11 @@ describe.skipIf(!hasBwrap)('contract run --stdin', () => {
         expect(linked.stdout).not.toContain('[MSC]');
         const missing = await run('--stdin', 'MSC=nothing.txt');
         expect(missing.stderr).toContain('stdin of MSC: nothing.txt is not a regular file of the project');
+        // a module the model does not have (a typo): refused before the build, with the one meant
+        const typo = await run('--stdin', 'MSX=commands.txt');
+        expect(typo.status).toBe(2);
+        expect(typo.stderr).toContain("contract run: bad --stdin MSX=commands.txt: no module 'MSX' in this architecture. Did you mean 'MSA'? (its modules: ORD, MAA, MAB, MSA, MSB, MSC, MSD, SUP, GLB); nothing was started\n");
+        expect(typo.stdout).toBe('');
         const bad = await run('--stdin', 'MSC');
         expect(bad.status).toBe(2);
         expect(bad.stderr).toContain("bad --stdin 'MSC': expected MODULE=FILE");

@@ -51,11 +51,7 @@ export function generateFromArchitecture(arch: Architecture, outDir: string, opt
  */
 export function generateArchitecture(documents: ModelSource[], outDir: string, options: WriteTreeOptions = {}): GenerationReport {
     const report = emptyReport();
-    const sorted = [...documents].sort((a, b) => {
-        const ua = documentOf(a)?.uri.toString() ?? '';
-        const ub = documentOf(b)?.uri.toString() ?? '';
-        return ua < ub ? -1 : ua > ub ? 1 : 0;
-    });
+    const sorted = byUri(documents);
     for (const source of sorted) {
         const d = documentOf(source);
         if (!d) continue;
@@ -70,5 +66,19 @@ export function generateArchitecture(documents: ModelSource[], outDir: string, o
         report.errors.unshift({ file: '(model)', message: 'the model has errors: nothing was generated (run `contract check` for details)' });
         return report;
     }
-    return generateFromArchitecture(architectureFromModels(sorted.map(modelOf)), outDir, options);
+    return generateFromArchitecture(architectureOf(sorted), outDir, options);
+}
+
+/** The documents in the order the generator reads them (by URI): the tree never depends on the order they were loaded in. */
+function byUri(documents: ModelSource[]): ModelSource[] {
+    return [...documents].sort((a, b) => {
+        const ua = documentOf(a)?.uri.toString() ?? '';
+        const ub = documentOf(b)?.uri.toString() ?? '';
+        return ua < ub ? -1 : ua > ub ? 1 : 0;
+    });
+}
+
+/** The plain architecture model the generator makes of `documents` (checked ones: generateArchitecture refuses errors). */
+export function architectureOf(documents: ModelSource[]): Architecture {
+    return architectureFromModels(byUri(documents).map(modelOf));
 }

@@ -22,6 +22,7 @@ import { JobEvents, type JobStatus, type JobStep, type StreamName } from './job-
 import { BuildOutputRouter, makeRecipeStatus, routeRunLine } from './output-router.js';
 import { generatedMakefileArgs, makeDir, PrepareError, prepareWorkspace, treeRoot, type ProjectKind, type ProjectSource } from './prepare.js';
 import { stageStdinFiles } from './stdin-files.js';
+import { stdinModulesProblem } from '@contract-studio/codegen/run-executables';
 import { SERVICE_AFFINITY } from './service-affinity.js';
 import { LauncherCrashes } from './launcher-crashes.js';
 import { addr2lineArgs, crashSite, crashSiteLine, CrashReports, MAX_ADDR2LINE_CHARS, parseAddr2line } from './crash-reports.js';
@@ -411,6 +412,10 @@ export class Job {
         this.finish('failed');
         return;
       }
+
+      // a stdin file for no module is refused before the build (make run would refuse it only after it)
+      const stdinRefused = this.request.stdin && prep.executables ? stdinModulesProblem(this.request.stdin, prep.executables, (name) => `stdin.${name}`) : null;
+      if (stdinRefused) throw new PrepareError(`${stdinRefused}; nothing was built or run`);
 
       step = 'build';
       this.setStatus('building', 'build');

@@ -17,7 +17,8 @@ import type { UserCopy } from './gcc-diagnostics.js';
 import type { Workspace } from './workspaces.js';
 import { generatorIdentity, type GenerationCache } from '../cache/generation-cache.js';
 import { checkRelativePath, listFilesNoFollow, readFileHeadNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
-import { SRC_GEN_ARCHITECTURE_DIR, SRC_GEN_DIR, TREE_LOCK_NAME, projectRootsOf, unusedTreeWarning } from '@contract-studio/conventions';
+import { SRC_GEN_ARCHITECTURE_DIR, SRC_GEN_DIR, TREE_LOCK_NAME, architecturePath, projectRootsOf, unusedTreeWarning } from '@contract-studio/conventions';
+import { makefileExecutables } from '@contract-studio/codegen/run-executables';
 
 export type ProjectKind = 'cactal' | 'make';
 
@@ -51,6 +52,8 @@ export interface PrepareOutcome {
   userCopies: Map<string, UserCopy>;
   /** Files of work/ rewritten by this prepare (0 on a no-op rebuild). */
   synced: number;
+  /** A Cactal project's executables, as its generated architecture Makefile names them (what `make run` starts); else null. */
+  executables: string[] | null;
 }
 
 /** The folders a run writes its output to (LOG_DIR, RUN_DIR), anywhere in the project: never read. */
@@ -269,7 +272,7 @@ export async function prepareWorkspace(
     for (const p of problems) log(`${problemAt(p)}: ${p.severity}: ${p.message}`);
     if (problems.some((p) => p.severity === 'error')) {
       log(`the project has ${problems.filter((p) => p.severity === 'error').length} error(s): nothing generated`);
-      return { ok: false, problems, regions: new Map(), userCopies: new Map(), synced: 0 };
+      return { ok: false, problems, regions: new Map(), userCopies: new Map(), synced: 0, executables: null };
     }
     log(`generated src-gen/ (${outcome.written} file(s) written, ${outcome.unchanged} unchanged) in ${Date.now() - t0} ms`);
   } else {
@@ -281,6 +284,7 @@ export async function prepareWorkspace(
   const regions = new Map<string, ProtectedRegion[]>();
   const userCopies = new Map<string, UserCopy>();
   let synced = 0;
+  let executables: string[] | null = null;
   const tCopy = Date.now();
   const files = await listFilesNoFollow(stageTree, (rel) => !/(^|\/)(logs|run)(\/|$)/.test(rel));
   for (const rel of files) {
@@ -290,6 +294,7 @@ export async function prepareWorkspace(
     const st = await fsp.lstat(join(stageTree, rel));
     const mode = st.mode & 0o111 ? 0o755 : 0o644;
     if (await syncFileNoFollow(ws.workDir, target, data, ws.owner, mode)) synced++;
+    if (kind === 'cactal' && rel === architecturePath('Makefile')) executables = makefileExecutables(data.toString('utf8'));
     if (/\.(c|h)$/.test(rel)) {
       const found = findProtectedRegions(data.toString('utf8'));
       if (found.length) regions.set(rel, found);
@@ -306,5 +311,5 @@ export async function prepareWorkspace(
   const dropped = await dropStaleWorkSources(ws.stageDir, ws.workDir, files.map((rel) => (root ? `${root}/${rel}` : rel)));
   await fsp.writeFile(digestFile, stamp);
   log(`work tree ready: ${files.length} file(s), ${synced} updated${dropped ? `, ${dropped} removed` : ''}${ws.reused ? ' (incremental)' : ''} in ${Date.now() - tCopy} ms`);
-  return { ok: true, problems, regions, userCopies, synced };
+  return { ok: true, problems, regions, userCopies, synced, executables };
 }

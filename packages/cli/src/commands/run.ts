@@ -23,6 +23,7 @@ import { safeName } from '../terminal-text.js';
 import { refusedDefaultLogs, refusedLogsOut, refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';
 import { failureText, moduleFailures, problemLines } from './run-problems.js';
 import { runSchemaFigures } from './run-schemas.js';
+import { loadRunModel, startProblem, stdinProblem } from './run-model-checks.js';
 
 /** Saved logs of at least this many bytes: `--trace`'s final check of its file is said before it begins. */
 const TRACE_CHECK_SAID_BYTES = 64 * 1048576;
@@ -161,57 +162,6 @@ export function gluedNumber(text: string): string | undefined {
     return undefined;
 }
 
-/**
- * Why `--start SUP.function(...)` names no supervision function of the project's model, or gives
- * it a parameter it does not have or a value of the wrong type, or null (also when the model
- * cannot be read or has errors: the build then says what is wrong; and when the arguments are
- * written in a way the scenario reader does not take: the supervisor then reads them itself, and
- * a refusal is a run issue, start-refused). The parameters are checked as a scenario's `start`
- * line is (@contract-studio/language/scenario). The language is loaded only for this, when
- * --start names a function.
- */
-export async function startProblem(start: string, dir: string): Promise<string | null> {
-    const m = /^([A-Za-z_]\w*)\.([A-Za-z_]\w*)/.exec(start);
-    if (!m) return null;
-    const [, sup, fn] = m as unknown as [string, string, string];
-    let supervisors: Map<string, string[]>;
-    let argumentProblems: () => Promise<string[]>;
-    try {
-        const { loadWorkspace } = await import('@contract-studio/language/node');
-        const { isSupervisor } = await import('@contract-studio/language');
-        const ws = await loadWorkspace(dir);
-        if (ws.diagnostics.some((d) => d.severity === 'error')) return null;
-        supervisors = new Map();
-        for (const d of ws.documents) {
-            for (const e of d.model?.elements ?? []) if (isSupervisor(e)) supervisors.set(e.name, e.functions.map((f) => f.name));
-        }
-        argumentProblems = async () => {
-            const { parseScenario, checkScenario, indexModels } = await import('@contract-studio/language/scenario');
-            const parsed = parseScenario(`start ${start}`);
-            if (parsed.diagnostics.length || parsed.steps.length !== 1) return [];
-            const models = ws.documents.flatMap((d) => (d.model ? [d.model] : []));
-            return checkScenario(parsed.steps, indexModels(models)).diagnostics.filter((d) => d.severity === 'error').map((d) => d.message.replace(/\.$/, ''));
-        };
-    } catch {
-        return null;
-    }
-    const all = [...supervisors].flatMap(([s, fns]) => fns.map((f) => `${s}.${f}`));
-    const listed = all.length ? `the model's supervision functions: ${all.join(', ')}` : 'the model has no supervision function';
-    const functions = supervisors.get(sup);
-    if (!functions) {
-        const near = closestName(sup, supervisors.keys());
-        const guess = near ? ` Did you mean '${near}.${closestName(fn, supervisors.get(near)!) ?? (supervisors.get(near)!.includes(fn) ? fn : supervisors.get(near)![0] ?? fn)}'?` : '';
-        return `bad --start '${start}': the model has no supervisor '${sup}'.${guess} (${listed}); nothing was started`;
-    }
-    if (functions.includes(fn)) {
-        const problems = await argumentProblems().catch(() => []);
-        return problems.length ? `bad --start '${start}': ${problems.slice(0, 5).join('; ')}; nothing was started` : null;
-    }
-    const near = closestName(fn, functions);
-    return `bad --start '${start}': supervisor ${sup} has no function '${fn}'.${near ? ` Did you mean '${sup}.${near}'?` : ''} (${listed}); nothing was started`;
-}
-
-
 export const runCommand: Command = {
     name: 'run',
     summary: 'build a Cactal project, run its architecture for a while, collect the CSV logs',
@@ -228,7 +178,8 @@ export const runCommand: Command = {
         '           a supervisor, function or parameter the model does not have, or a value of the wrong type, is refused before the build (exit 2, with what it has)',
         '  --ready-timeout: how long every module\'s init may take before the start request is sent (default 10s); a module whose init has not returned by then stops the run (exit 4)',
         '  --cpus: pin every module to these CPUs (e.g. 1, 0-1; default: the system places them) — steadier periods',
-        '  --stdin MODULE=FILE: module MODULE reads FILE, a file of the project (its path from DIR, at most 1 MiB), on its stdin; every other module\'s stdin is /dev/null',
+        '  --stdin MODULE=FILE: module MODULE reads FILE, a file of the project (its path from DIR, at most 1 MiB), on its stdin; every other module\'s stdin is /dev/null;',
+        '           a MODULE the model does not have is refused before the build (exit 2, with the closest name and its modules)',
         '  --realtime: modules take their SCHED_FIFO priorities in the sandbox, bounded so that a runaway loop cannot freeze the machine (docs/sandbox.md "Real-time mode"); refused, saying why, where the host cannot grant it',
         '  --logs: folder the CSV logs (one per module) are copied to (default DIR/logs, never a link found there; collected from every sandbox, docker included);',
         '          it holds one run: the previous run\'s logs there are moved to OUT/previous/run-<time>/ first (never deleted)',
@@ -279,9 +230,11 @@ export const runCommand: Command = {
             io.err(`contract run: ${refused}\n`);
             return EXIT_FAILURE;
         }
-        // a misspelt function is refused before anything is built or started (the run would idle)
-        if (start) {
-            const problem = await startProblem(start, opts.dir);
+        // a misspelt function is refused before anything is built or started (the run would idle),
+        // and so is a stdin file for no module (every module would read /dev/null)
+        if (start || stdin) {
+            const model = await loadRunModel(opts.dir);
+            const problem = (start ? await startProblem(start, opts.dir, model) : null) ?? (stdin ? await stdinProblem(stdin, model) : null);
             // bad usage as any other: the message, then the synopsis
             if (problem) throw new UsageError(problem);
         }
@@ -374,3 +327,4 @@ export const runCommand: Command = {
 // the parts of `contract run` that live in their own files, for their tests
 export { failureText, moduleFailures, problemLines, type ModuleFailure } from './run-problems.js';
 export { refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';
+export { startProblem } from './run-model-checks.js';

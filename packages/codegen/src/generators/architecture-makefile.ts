@@ -48,6 +48,14 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         REQUIRE_REALTIME ?=
         RUN_DIR ?= $(CURDIR)/run
         LOG_DIR ?= $(CURDIR)/logs
+        # make run STDIN_<NAME>=file on the command line for a NAME none of the EXECUTABLES: refused before
+        # anything is built or started (a misspelt name left every stdin /dev/null); the environment's are not looked at
+        STDIN_UNKNOWN = $(filter-out $(addprefix STDIN_,$(EXECUTABLES)),$(foreach v,$(filter STDIN_%,$(.VARIABLES)),$(if $(findstring command line,$(origin $(v))),$(v))))
+        ifneq ($(filter run,$(MAKECMDGOALS)),)
+        ifneq ($(STDIN_UNKNOWN),)
+        $(error $(foreach v,$(STDIN_UNKNOWN),$(v)=$($(v)): no module $(v:STDIN_%=%);) this architecture's executables are $(EXECUTABLES); nothing was built or run)
+        endif
+        endif
 
         .PHONY: all runtime tools clean run kill $(EXECUTABLES)
         all: $(EXECUTABLES) tools

@@ -15,6 +15,7 @@ import { constantsHeaderPath, generateConstantsHeader } from './constants-header
 import { supTypesHeader } from './supervisor-module.js';
 import { generateOrdVocabulary } from './vocabulary/ord-vocabulary.js';
 import { generateSupervisorVocabulary } from './vocabulary/supervisor-vocabulary.js';
+import { architectureExecutables } from './run-executables.js';
 import { architecturePath } from '@contract-studio/conventions';
 
 /** Every file of the generated tree (docs/codegen.md "The tree") for an architecture (paths relative to the output folder). */
@@ -62,8 +63,7 @@ export function generateFiles(arch: Architecture): GeneratedFile[] {
     }
     add(architecturePath('tools/Makefile'), generateToolsMakefile(controlled.map((c) => c.name)));
 
-    const executables = ['ORD', ...arch.modules.map((m) => m.name), ...arch.supervisors.map((s) => s.name)];
-    add(ARCHITECTURE_MAKEFILE, generateArchitectureMakefile(arch, executables));
+    add(ARCHITECTURE_MAKEFILE, generateArchitectureMakefile(arch, architectureExecutables(arch)));
     files.push(...executableMakefiles(makefiles, files));
     return files;
 }
