@@ -14,6 +14,7 @@ import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO } from './com
 import { addLimitOption, DEFAULT_PROCESS_LIMIT, emptyLimitOptions, modulesUnderProcessLimit, RENAME_JOURNAL_NAME, SANDBOX_CHOICES, SRC_GEN_DIR, UNUSED_TREE_LINE, withoutStuckAdvice, type LimitOptions } from '@contract-studio/conventions';
 import { defaultRuntimeSource } from './runtime-source.js';
 import { safeName } from './terminal-text.js';
+import { insideProjectRefusal } from './enclosing-project.js';
 
 /** The environment cannot do what was asked (no sandbox, no runtime, a build cache folder that cannot be trusted). */
 export const EXIT_ENVIRONMENT = 3;
@@ -171,6 +172,9 @@ export async function runJob(
     whileOpen?: (service: JobServiceType, cacheDir: string, outcome: JobOutcome) => Promise<void>,
     onEvent?: (e: JobEvent) => void,
 ): Promise<JobOutcome | { error: string; exitCode: number }> {
+    // a folder inside a project (P/src of P/src-gen) is no project: it built an empty second tree of defaults
+    const inside = insideProjectRefusal(opts.dir, opts.dirArg, request.action, request.action === 'run' ? 'built or run' : 'built');
+    if (inside) return { error: inside, exitCode: EXIT_FAILURE };
     const t0 = Date.now();
     const { JobService, ServiceError, DEFAULT_RUNTIME_SOURCE, resolveCacheDir, prepareCacheDir, DEFAULT_LIMITS, LimitsError, mergeLimits } = await import('@contract-studio/build-service');
     // --limit: the service's own check (names, whole counts, ranges), as `contract serve` has it, before anything else

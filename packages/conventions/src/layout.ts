@@ -36,6 +36,9 @@ export function foldersHoldingAll(files: readonly string[]): string[] {
     return common.map((_, i) => common.slice(0, common.length - i).join('/'));
 }
 
+/** The record of what the generator wrote, in its output folder (codegen's writer/manifest.ts): a `src-gen/` holding it is a tree ContrACT Studio generated. */
+export const MANIFEST_NAME = '.contract-manifest.json';
+
 /** The write lock of a generated tree, in its output folder (codegen's tree-lock.ts); no listing of the tree shows it. */
 export const TREE_LOCK_NAME = '.contract-lock';
 

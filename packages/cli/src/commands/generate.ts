@@ -16,6 +16,7 @@ import { SRC_GEN_DIR, projectRootsOf, unusedTreeWarning } from '@contract-studio
 import { safeName } from '../terminal-text.js';
 import { MENTIONED_KINDS, printRegionMentions } from '../region-mentions-text.js';
 import { holdTreeLock } from '../tree-lock-hold.js';
+import { insideProjectRefusal } from '../enclosing-project.js';
 
 function list(io: CliIO, label: string, paths: string[], show = true): void {
     if (paths.length === 0) return;
@@ -46,10 +47,11 @@ export const generateCommand: Command = {
         '  OUT: output folder (default DIR/src-gen); the tree goes to OUT/generated/architecture',
         '  --verbose: also list the files kept unchanged (otherwise only counted)',
         'DIR is the project\'s root (docs/codegen.md "Where a project is": the outermost folder holding a src-gen/, else the folder of the .contract files): its .contract files may be in a sub-folder (DIR/src/*.contract, tree DIR/src-gen);',
-        '  refused when they are all in a sub-folder with its own src-gen/ or DIR holds several projects; a second src-gen/ below DIR is said and not used.',
+        '  refused when they are all in a sub-folder with its own src-gen/, DIR holds several projects, or DIR is inside a project (a folder above it holds a generated tree: P/src of P/src-gen);',
+        '  a second src-gen/ below DIR is said and not used.',
         'User code in protected regions is kept; code whose region or entity disappeared goes to OUT/orphans/.',
         'The runtime is not part of the tree: give it when building (contract build --runtime PATH, or make CONTRACT_RUNTIME=PATH).',
-        'exit status: 1 when the model has errors, DIR holds no .contract file, its files are all in a sub-folder with its own src-gen/ or DIR holds several projects (nothing generated), or a file could not be merged; 0 otherwise, 2 on bad usage',
+        'exit status: 1 when the model has errors, DIR holds no .contract file, its files are all in a sub-folder with its own src-gen/, DIR holds several projects or is inside a project (nothing generated), or a file could not be merged; 0 otherwise, 2 on bad usage',
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
         const { positionals, options } = parseArgs(args, ['o', 'output', 'runtime'], ['verbose']);
@@ -62,6 +64,12 @@ export const generateCommand: Command = {
         if (!info?.isDirectory()) throw new UsageError(`${safeName(dirArg)} is not a directory`);
         const outOption = options.get('o') ?? options.get('output');
         const out = typeof outOption === 'string' ? resolve(io.cwd, outOption) : join(dir, SRC_GEN_DIR);
+        // a folder inside a project (P/src of P/src-gen) is no project: its tree would be a second, empty one (-o OUT is taken as meant)
+        const inside = typeof outOption === 'string' ? null : insideProjectRefusal(dir, dirArg, 'generate', 'generated');
+        if (inside) {
+            io.err(`contract generate: ${inside}\n`);
+            return EXIT_FAILURE;
+        }
 
         // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
         const { loadWorkspace } = await import('@contract-studio/language/node');

@@ -1,5 +1,5 @@
 import { createHash } from 'node:crypto';
-import { conflictMarkerLines, conflictMarkers } from '@contract-studio/conventions';
+import { MANIFEST_NAME, conflictMarkerLines, conflictMarkers } from '@contract-studio/conventions';
 import { parseRegions, type Region } from '../regions/parse-regions.js';
 import { ORPHANS_DIR } from './orphans.js';
 import type { OutputTree } from './output-tree.js';
@@ -11,7 +11,7 @@ import { LINE_HASHES, MAX_SKELETON_LINES, encodeLineHashes, skeletonLines } from
  * per protected region, a hash of the default content it generated. It tells which files belong
  * to deleted entities and whether a region still holds only the generator's default (no user code).
  */
-export const MANIFEST_NAME = '.contract-manifest.json';
+export { MANIFEST_NAME };
 
 /** The file's format, as serialiseManifest writes it. */
 export interface Manifest {
