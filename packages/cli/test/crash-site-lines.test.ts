@@ -66,3 +66,17 @@ describe('a crash site in contract run', () => {
         expect(failures).toEqual([{ module: 'EST', how: 'died by signal 11 (Segmentation fault)' }]);
     });
 });
+
+describe('a module that ended with a status in contract run', () => {
+    it('whose init region returned 0 did not start: said so, not as a crash; another exit with a status failed', () => {
+        const failures = moduleFailures([
+            { source: 'MAB', stream: 'stderr', line: 'MAB: its init region returned 0 (false): the module does not start' },
+            { source: 'launcher', stream: 'stderr', line: 'module MAB (pid 63) exited with status 255' },
+            { source: 'launcher', stream: 'stderr', line: 'module CTL (pid 64) exited with status 3' },
+            { source: 'launcher', stream: 'stderr', line: 'FAILED: module MAB crashed' },
+            { source: 'launcher', stream: 'stderr', line: 'FAILED: module CTL crashed' },
+        ]);
+        expect(failures.map(failureText)).toEqual(['MAB did not start: its init region returned 0 (exited with status 255)', 'CTL failed (exited with status 3)']);
+    });
+});
+

@@ -525,7 +525,10 @@ export class Job {
           }
           this.runIssues.line(routed.line, routed.source);
           if (routed.source === 'launcher') crashes.line(routed.line);
-          else if (routed.source !== 'run') crashReports.line(routed.line, routed.source);
+          else if (routed.source !== 'run') {
+            crashReports.line(routed.line, routed.source);
+            crashes.moduleLine(routed.source, routed.line);
+          }
           return [routed];
         }, runEnv);
       } catch (e) {

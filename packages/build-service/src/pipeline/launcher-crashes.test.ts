@@ -30,14 +30,15 @@ describe("the launcher's crashes, for a failed run's message", () => {
       c.line(`module ${m} (pid 1) ${how}`);
       c.line(`FAILED: module ${m} crashed`);
     }
-    expect(c.summary()).toBe('5 modules crashed: A (exited with status 3), B (died by signal 6 (Aborted)), C (exited with status 3 while the run stopped), D (exited with status 1) and 1 more');
+    // an exit with a status is no crash: each said as it ended
+    expect(c.summary()).toBe('5 modules failed: A failed (exited with status 3), B crashed (died by signal 6 (Aborted)), C failed (exited with status 3 while the run stopped), D failed (exited with status 1) and 1 more');
   });
 
   test("a kill (a SIGKILL the launcher did not send) is told apart from a crash, by the memory limit when that limit was hit", () => {
     const c = new LauncherCrashes();
     c.line('module HOG (pid 30) died by signal 9 (Killed)');
     c.line("FAILED: module HOG was killed (a SIGKILL the launcher did not send: the kernel's at a memory limit or the real-time CPU bound, or another process's)");
-    expect(c.failures()).toEqual([{ module: 'HOG', how: 'died by signal 9 (Killed)', killed: true }]);
+    expect(c.failures()).toEqual([{ module: 'HOG', how: 'died by signal 9 (Killed)', killed: true, initRefused: false }]);
     expect(c.summary()).toBe('module HOG was killed (died by signal 9 (Killed))');
     expect(c.summary({ name: 'memory' })).toBe('module HOG was killed by the memory limit (died by signal 9 (Killed))');
     c.line('module MSC (pid 31) died by signal 11 (Segmentation fault)');
@@ -48,5 +49,22 @@ describe("the launcher's crashes, for a failed run's message", () => {
     old.line('module HOG (pid 30) died by signal 9 (Killed) while the run stopped');
     old.line('FAILED: module HOG crashed');
     expect(old.summary()).toBe('module HOG was killed (died by signal 9 (Killed) while the run stopped)');
+  });
+
+  test('a module whose init region returned 0 did not start: said so, not as a crash (its own line read from its output)', () => {
+    const c = new LauncherCrashes();
+    c.moduleLine('MAB', 'MAB: its init region returned 0 (false): the module does not start');
+    c.moduleLine('MSC', 'MAB: its init region returned 0 (false): the module does not start'); // another module's words: not MSC's
+    c.line('module MAB (pid 63) exited with status 255');
+    c.line('FAILED: module MAB crashed');
+    expect(c.summary()).toBe('module MAB did not start: its init region returned 0 (exited with status 255)');
+    c.line('module MSC (pid 64) died by signal 11 (Segmentation fault)');
+    c.line('FAILED: module MSC crashed');
+    expect(c.summary()).toBe('2 modules failed: MAB did not start: its init region returned 0 (exited with status 255), MSC crashed (died by signal 11 (Segmentation fault))');
+    // an exit with a status without that line: failed, not crashed
+    const d = new LauncherCrashes();
+    d.line('module CTL (pid 70) exited with status 3');
+    d.line('FAILED: module CTL crashed');
+    expect(d.summary()).toBe('module CTL failed (exited with status 3)');
   });
 });

@@ -14,6 +14,8 @@ const END_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) (exited with status \d+(?: 
 const FAILED_LINE = /^FAILED: module ([A-Za-z_]\w*) (crashed|was killed(?: \(.{1,300}\))?)$/;
 /** The launcher's `died by signal 9 (Killed)`, `... while the run stopped`: a SIGKILL it did not send (it terminates with SIGTERM, and says `terminated`). */
 const SIGKILLED = /^died by signal 9 \(Killed\)( while the run stopped)?$/;
+/** A generated module's own line when its init region returned 0 (codegen's module-source.ts), its module tag removed. */
+const INIT_REFUSED = /^([A-Za-z_]\w*): its init region returned 0 \(false\): the module does not start$/;
 /** Failures named in one message at most (the others counted). */
 const NAMED = 4;
 
@@ -24,11 +26,30 @@ export interface LauncherFailure {
   how: string | undefined;
   /** It was killed (a SIGKILL the launcher did not send), not crashed by its code. */
   killed: boolean;
+  /** Its init region returned 0: it said so and ended with a status, before it ever started. */
+  initRefused: boolean;
+}
+
+/** It ended by a signal of its own code's making (or no exit line was read), not with a status nor killed. */
+export function crashedBySignal(f: LauncherFailure): boolean {
+  return !f.killed && !f.initRefused && !f.how?.startsWith('exited with status');
+}
+
+/**
+ * What happened to a module that failed, not killed, after its name: `crashed (died by signal 11
+ * (Segmentation fault))`, `did not start: its init region returned 0 (exited with status 255)`,
+ * `failed (exited with status 3)`: ending with a status is no crash.
+ */
+export function failureWords(f: LauncherFailure): string {
+  const how = f.how ?? 'no exit line';
+  if (f.initRefused) return `did not start: its init region returned 0 (${how})`;
+  return crashedBySignal(f) ? `crashed (${how})` : `failed (${how})`;
 }
 
 export class LauncherCrashes {
   private readonly how = new Map<string, string>();
   private readonly failed: { module: string; killed: boolean }[] = [];
+  private readonly initRefused = new Set<string>();
 
   /** A line of contract-launch (its `contract-launch: ` prefix removed). */
   line(text: string): void {
@@ -42,11 +63,17 @@ export class LauncherCrashes {
       this.failed.push({ module: failed[1]!, killed: failed[2] !== 'crashed' });
   }
 
+  /** A line of module `module`'s output (its `[NAME] ` tag removed): its init region's refusal to start is noted. */
+  moduleLine(module: string, text: string): void {
+    if (INIT_REFUSED.exec(text)?.[1] === module && this.initRefused.size < 1024) this.initRefused.add(module);
+  }
+
   /** The modules that failed, in the order the launcher named them, each with how it ended. */
   failures(): LauncherFailure[] {
     return this.failed.map(({ module, killed }) => {
       const how = this.how.get(module);
-      return { module, how, killed: killed || (how !== undefined && SIGKILLED.test(how)) };
+      const sigkilled = killed || (how !== undefined && SIGKILLED.test(how));
+      return { module, how, killed: sigkilled, initRefused: !sigkilled && this.initRefused.has(module) && !!how?.startsWith('exited with status') };
     });
   }
 
@@ -65,7 +92,12 @@ export class LauncherCrashes {
     const how = (f: LauncherFailure) => `${f.how ?? 'no exit line'}${f.killed ? '' : sites?.get(f.module) ?? ''}`;
     if (failures.length === 1) {
       const f = failures[0]!;
-      return `module ${f.module} ${f.killed ? `was killed${by}` : 'crashed'} (${f.how ?? 'no exit line'})${f.killed ? '' : sites?.get(f.module) ?? ''}`;
+      return `module ${f.module} ${f.killed ? `was killed${by} (${f.how ?? 'no exit line'})` : `${failureWords(f)}${sites?.get(f.module) ?? ''}`}`;
+    }
+    // one ended with a status (its init refused to start, its code's exit): each said as it was
+    if (failures.some((f) => !f.killed && !crashedBySignal(f))) {
+      const named = failures.slice(0, NAMED).map((f) => `${f.module} ${f.killed ? `was killed${by} (${f.how ?? 'no exit line'})` : `${failureWords(f)}${crashedBySignal(f) ? sites?.get(f.module) ?? '' : ''}`}`).join(', ');
+      return `${failures.length} modules failed: ${named}${failures.length > NAMED ? ` and ${failures.length - NAMED} more` : ''}`;
     }
     const killed = failures.filter((f) => f.killed).length;
     const verb = killed === 0 ? 'crashed' : killed === failures.length ? `were killed${by}` : `crashed or were killed${by}`;

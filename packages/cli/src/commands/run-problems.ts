@@ -2,7 +2,7 @@
  * What went wrong in a `contract run`, as told to the user: the modules the launcher saw crash, and
  * the run's problems with ORD's `*stateindex` advice left out for a module that crashed.
  */
-import { crashSiteOfLine, LauncherCrashes } from '@contract-studio/build-service';
+import { crashSiteOfLine, failureWords, LauncherCrashes } from '@contract-studio/build-service';
 import { STUCK_ADVICE } from '@contract-studio/conventions';
 import type { JobOutcome } from '../job-runner.js';
 
@@ -16,16 +16,25 @@ export interface ModuleFailure {
      * bound, or another process).
      */
     killedBy?: 'memory-limit' | 'sigkill';
+    /** Its init region returned 0: it said so and ended with a status (not a crash). */
+    initRefused?: boolean;
     /** Where it crashed, as the build service found it from the module's crash report: ` at FILE:LINE in its protected region ID (function)`. */
     site?: string;
     /** With killedBy, what `contract run` says of it instead of `module CTL crashed (...)`: `CTL was killed by the memory limit (...)`. */
     message?: string;
 }
 
-/** `CTL crashed (died by signal 11 (Segmentation fault))`, `CTL was killed by the memory limit (...)`: the line `contract run` prints after `module `. */
+/**
+ * `CTL crashed (died by signal 11 (Segmentation fault))`, `MAB did not start: its init region
+ * returned 0 (exited with status 255)`, `CTL failed (exited with status 3)`, `CTL was killed by the
+ * memory limit (...)`: the line `contract run` prints after `module `.
+ */
 export function failureText(f: ModuleFailure): string {
-    return f.message ?? `${f.module} crashed (${f.how})${f.site ?? ''}`;
+    return f.message ?? `${f.module} ${whatHappened(f)}${f.site ?? ''}`;
 }
+
+/** A failure not killed, in the build service's words (launcher-crashes.ts). */
+const whatHappened = (f: ModuleFailure): string => failureWords({ module: f.module, how: f.how, killed: false, initRefused: f.initRefused === true });
 
 /** Why the kernel's OOM killer chose it, as `contract run` says it. */
 const OOM_KILL = "signal 9: the kernel's OOM killer, which kills the process using the most memory";
@@ -55,11 +64,13 @@ export function moduleFailures(lines: JobOutcome['runLines'], limitHit?: { name:
     const sites = new Map<string, string>();
     for (const { source, line } of lines) {
         if (source === 'launcher') crashes.line(line);
+        else if (source !== 'service' && source !== 'run') crashes.moduleLine(source, line);
         const site = source === 'service' ? crashSiteOfLine(line) : undefined;
         if (site) sites.set(site.module, site.said);
     }
-    return crashes.failures().map(({ module, how = 'crashed', killed }) => {
+    return crashes.failures().map(({ module, how = 'crashed', killed, initRefused }) => {
         const site = sites.get(module);
+        if (initRefused) return { module, how, initRefused };
         if (!killed) return site ? { module, how, site } : { module, how };
         const stopped = how.endsWith(' while the run stopped') ? ' while the run stopped' : '';
         return limitHit?.name === 'memory'
@@ -80,7 +91,7 @@ export function problemLines(issues: readonly { kind: string; module?: string; m
         const f = i.kind === 'module-stuck' && i.module !== undefined ? crashed.get(i.module) : undefined;
         if (f === undefined) return i.message;
         const why = f.killedBy === 'memory-limit' ? `it was killed by the memory limit (${OOM_KILL})`
-            : f.killedBy === 'sigkill' ? `it was killed (${otherKill(realtime)})` : `it crashed (${f.how})`;
+            : f.killedBy === 'sigkill' ? `it was killed (${otherKill(realtime)})` : `it ${whatHappened(f)}`;
         return `${i.message.replace(STUCK_ADVICE, '')}: ${why}`;
     });
 }
