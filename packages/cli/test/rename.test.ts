@@ -244,7 +244,7 @@ describe('contract rename', () => {
         execFileSync('sed', ['-i', 's/\\bMSB\\b/MSX/g', ...Object.keys(contractFiles(dir)).map((f) => join(dir, f))]);
         const io = capture(scratch.root);
         expect(await runCli(['generate', 'tutorial'], io)).toBe(0);
-        expect(io.stdout).toContain('orphaned (user code moved aside): ');
+        expect(io.stdout).toContain('copied to orphans/ (code moved aside, or lines this generator does not write): ');
         const orphan = readFileSync(join(dir, 'src-gen/orphans/generated/architecture/modules/MSB_mod/module.c'), 'latin1');
         expect(orphan).toMatch(/^\/\* Orphaned user code of generated\/architecture\/modules\/MSB_mod\/module\.c \(module or supervisor MSB\), moved here on \d{4}-\d\d-\d\dT/);
         expect(orphan).toContain('`contract rename DIR OLD NEW`');

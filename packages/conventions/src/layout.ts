@@ -36,6 +36,14 @@ export function foldersHoldingAll(files: readonly string[]): string[] {
     return common.map((_, i) => common.slice(0, common.length - i).join('/'));
 }
 
+/**
+ * What the files a generation copied to `src-gen/orphans/` hold, as the CLI's list and the IDE's
+ * Generate panel name them: user code whose region or entity is gone, or, in a tree without a
+ * manifest (an older version's, the Eclipse tool's), whole files holding lines outside the regions
+ * that this generator does not write, which may be an older generator's lines only.
+ */
+export const ORPHANS_HOLD = 'code moved aside, or lines this generator does not write';
+
 /** The record of what the generator wrote, in its output folder (codegen's writer/manifest.ts): a `src-gen/` holding it is a tree ContrACT Studio generated. */
 export const MANIFEST_NAME = '.contract-manifest.json';
 

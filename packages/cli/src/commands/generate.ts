@@ -12,7 +12,7 @@ import type { FinishedRename, GenerationProblem, GenerationReport } from '@contr
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { formatText, summarize } from '../diagnostic-format.js';
-import { SRC_GEN_DIR, projectRootsOf, unusedTreeWarning } from '@contract-studio/conventions';
+import { ORPHANS_HOLD, SRC_GEN_DIR, projectRootsOf, unusedTreeWarning } from '@contract-studio/conventions';
 import { safeName } from '../terminal-text.js';
 import { MENTIONED_KINDS, printRegionMentions } from '../region-mentions-text.js';
 import { holdTreeLock } from '../tree-lock-hold.js';
@@ -30,7 +30,7 @@ export async function printReport(io: CliIO, report: GenerationReport, outLabel:
     list(io, 'created', report.created);
     list(io, 'updated', report.updated);
     list(io, 'kept (unchanged)', report.unchanged, verbose);
-    list(io, 'orphaned (user code moved aside)', report.orphaned);
+    list(io, `copied to orphans/ (${ORPHANS_HOLD})`, report.orphaned);
     list(io, 'removed (no user code)', report.removed);
     // plain concatenation, not path.join: join would normalise the message too (a refused
     // manifest entry such as "../../x" must be shown as it is)

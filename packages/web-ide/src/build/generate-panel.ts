@@ -1,5 +1,6 @@
 import { h } from '../util/dom.js';
 import type { GenerateReport } from '../api.js';
+import { ORPHANS_HOLD } from '@contract-studio/conventions';
 
 interface Problem {
   file: string;
@@ -61,7 +62,7 @@ export class GeneratePanel {
       r.layoutWarnings?.length ? h('div', { class: 'gen-section warnings layout-warnings' }, h('div', { class: 'gen-title' }, `Project layout (${r.layoutWarnings.length})`),
         ...r.layoutWarnings.map((w) => h('div', { class: 'gen-problem' }, h('span', { class: 'sev' }, '⚠'), ' ', w))) : '',
       problems('Errors — files left untouched', r.errors as Problem[], 'errors') ?? '',
-      r.orphaned.length ? h('div', { class: 'gen-section warnings' }, h('div', { class: 'gen-title' }, `Orphaned user code (${r.orphaned.length}) — moved, never deleted`), ...r.orphaned.map((f) => fileLink(f, 'orphan'))) : '',
+      r.orphaned.length ? h('div', { class: 'gen-section warnings' }, h('div', { class: 'gen-title' }, `Copied to orphans/ (${r.orphaned.length}) — ${ORPHANS_HOLD}; never deleted`), ...r.orphaned.map((f) => fileLink(f, 'orphan'))) : '',
       problems('Warnings', r.warnings as Problem[], 'warnings') ?? '',
       h('div', { class: 'gen-section' }, h('div', { class: 'gen-title' }, `Generated tree: ${base || './'}`),
         h('div', { class: 'gen-tree' }, ...generated.map(([f, state]) => fileLink(f!, state!)))),
