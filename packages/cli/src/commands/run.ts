@@ -18,7 +18,6 @@ import { LiveTrace, settleTraceFile } from '../live-trace.js';
 import { traceNameProblem } from '../trace-files.js';
 import { CLI_BUILD_SECONDS, CLI_RUN_ROOM_SECONDS, COMMON_FLAGS, COMMON_REPEATABLE, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, LIMIT_USAGE, onTerminal, parseJobOptions, parseLimitOptions, reportBuild, runJob } from '../job-runner.js';
 import { MIN_READY_TIMEOUT_SECONDS, addStdinEntry, cpuMissingFrom, emptyStdinEntries, isCpuList } from '@contract-studio/conventions';
-import { closestName } from '@contract-studio/language/near-names';
 import { safeName } from '../terminal-text.js';
 import { refusedDefaultLogs, refusedLogsOut, refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';
 import { failureText, moduleFailures, problemLines } from './run-problems.js';
