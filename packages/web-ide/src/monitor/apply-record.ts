@@ -3,7 +3,7 @@
  * writes which kind, and what peer/port/detail hold). Pure and total: a record it does not use
  * changes only the record count; nothing read from the trace can make it throw.
  */
-import { crashText, dataDropReason, isRule, missedTicksOf, overrunningAfter, skippedReleasesOf, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { EventWaits, crashText, dataDropReason, isRule, missedTicksOf, overrunningAfter, skippedReleasesOf, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { goneModuleSign, type GoneSign } from './gone-signs.js';
 import {
   HIST_BUCKETS, histogramBucket, MAX_NAMES, RECENT_MARKS,
@@ -21,7 +21,7 @@ const MAX_STARTED = 16;
 export const FOLDED_KINDS: ReadonlySet<string> = new Set([
   'sup_rule', 'supervisor', 'module_hold', 'flow_hold', 'module_priority', 'request_received', 'scheduler',
   'ord_release', 'ord_complete', 'ord_deadline_miss', 'run_started', 'run_finished', 'module_started', 'module_exit',
-  'module_crashed', 'data_posted', 'data_dropped', 'event_posted', 'event_received', 'requests_kept', 'requests_kept_end', 'priority', 'error',
+  'module_crashed', 'data_posted', 'data_dropped', 'event_posted', 'event_received', 'event_waited', 'requests_kept', 'requests_kept_end', 'priority', 'error',
 ]);
 
 /** What applyRecord does with a well-formed record of a kind not in FOLDED_KINDS, at time t. */
@@ -197,6 +197,27 @@ export function foldDataDropped(s: MonitorState, module: string, port: number | 
   f.dropped = (f.dropped ?? 0) + 1;
   f.dropReason = reason.slice(0, 80);
 }
+
+/**
+ * event_waited: a streak of `module`'s posts on its output `port` that waited for room in `peer`'s
+ * full mailbox (its input `to_port`). The flow's first such record is kept in `contract trace`'s
+ * words (EventWaits: the line its story tells there), and every streak's waits counted.
+ */
+function foldEventWaited(s: MonitorState, k: KnownRecord, t: Ns): void {
+  const toPort = num(k.fields['to_port']);
+  if (!k.peer || k.port === null || toPort === undefined) return;
+  // a flow whose events were not received yet: `last` is when it was first seen
+  const f = entry<FlowCount>(s, s.eventFlows, `${k.module}:${k.port}->${k.peer}:${toPort}`, () => ({ count: 0, last: t }));
+  if (!f) return;
+  const waits = num(k.fields['waits']) ?? 0;
+  if (!(waits > 0)) return;
+  f.waits = (f.waits ?? 0) + waits;
+  // a follower of its own sees this record as the flow's first: the line trace tells of it
+  f.waited ??= new EventWaits().see(k)?.slice(0, MAX_WAITED_CHARS);
+}
+
+/** Longest first-wait line kept for a flow (its names are a log's: a forged one could be a whole line). */
+const MAX_WAITED_CHARS = 400;
 
 /** Longest request name kept for the panel (a forged detail can be a whole line). */
 const MAX_REQUEST_CHARS = 40;
@@ -469,6 +490,9 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
     case 'event_posted':
       // an event no one received: counted per port (one a subscriber received is not folded)
       if (isUnheardEvent(k)) count(s, s.unheardEvents, unheardPort(k), t);
+      return;
+    case 'event_waited':
+      foldEventWaited(s, k, t);
       return;
     case 'event_received': {
       const from = num(f['from_port']);

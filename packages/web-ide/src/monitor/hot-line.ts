@@ -18,7 +18,7 @@ import type { MonitorState, Ns } from './monitor-state.js';
 export const HOT_KINDS: ReadonlySet<string> = new Set(['run_started', 'run_finished', 'ord_release', 'ord_complete', 'data_posted']);
 
 /** The detail word `key` as a number (the reader's num(fields[key])), or undefined. */
-function numberOf(text: string, from: number, to: number, key: string): number | undefined {
+export function numberOf(text: string, from: number, to: number, key: string): number | undefined {
   const v = wordValueIn(text, key, from, to);
   if (v < 0) return undefined;
   const e = spaceIn(text, v, to);

@@ -28,6 +28,7 @@ import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from '.
 import { cloneState, emptyState, type MonitorState, type Ns } from './monitor-state.js';
 import { marksIn, type Mark, type MonitorView } from './model-view.js';
 import { goneModuleSign } from './gone-signs.js';
+import { FlowFindings } from './flow-findings.js';
 
 export interface MonitorModelOptions {
   checkpointEvery?: number;
@@ -300,6 +301,8 @@ export class MonitorModel implements MonitorView {
   private stopMarked = false;
   /** The supervisors' undos to ORD until ORD serves them: those its end left unserved are marked on their schema's row, as `contract trace` tells them. */
   private readonly undos = new UndosToOrd();
+  /** What the flows did, as `contract trace` tells it: event flows that waited for room (marked), data flows that delivered nothing (at the end). */
+  private readonly flows = new FlowFindings();
   /** The run's end was marked (recordsEnded: once). */
   private endMarked = false;
   /** The schema a release or completion line named last, and its waits (a line naming it again is matched in place). */
@@ -427,6 +430,7 @@ export class MonitorModel implements MonitorView {
     const ord = scanned.comma[2]! - scanned.comma[1]! === 4 && text.startsWith('ORD', scanned.comma[1]! + 1);
     if (delivered || !FOLDED_KINDS.has(kind)) {
       if (kind === 'ord_finished') this.finishedLine(text);
+      this.flows.seeScanned(text, from, to);
       const t = this.timeOf(scanned.mono);
       if (ord) this.ordLastT = t;
       this.keepLine(t, text, from, to, textId);
@@ -438,6 +442,7 @@ export class MonitorModel implements MonitorView {
       if (ord) this.ordLastT = t;
       this.keepLine(t, text, from, to, textId);
       applyHotLine(this.live, text, t, this.t0 ?? 0);
+      this.flows.seeScanned(text, from, to);
       // a release: its module waited for in its cycle (the schema and cycle as applyHotLine read them)
       if (kind === 'ord_release') this.releaseLine(text);
       return true;
@@ -494,7 +499,10 @@ export class MonitorModel implements MonitorView {
       this.stopMarked = true;
       this.cappedMark(t, 'error', r as KnownRecord, askedToStopText);
     }
-    if (r.kind !== 'unknown' && !isRule(r)) this.followUndoToOrd(t, r as KnownRecord);
+    if (r.kind !== 'unknown' && !isRule(r)) {
+      this.followUndoToOrd(t, r as KnownRecord);
+      this.followFlows(t, r as KnownRecord);
+    }
     const sign = r.kind === 'error' || r.kind === 'scheduler' ? goneModuleSign(r as KnownRecord) : undefined;
     const wasGone = sign && this.live.modules.get(sign.module)?.gone;
     applyRecord(this.live, r, t, this.t0 ?? 0);
@@ -542,6 +550,17 @@ export class MonitorModel implements MonitorView {
     this.marks.push({ t, kind: 'unheard', where: k.module, label: `${unheardEventText(port)}; Deliveries counts its later ones`.slice(0, 300) });
   }
 
+  /**
+   * A parsed record's share of what the flows did (FlowFindings): an event flow's first streak of
+   * posts that waited for room is marked on the functions' row, in `contract trace`'s words
+   * (Deliveries says it on the flow's row).
+   */
+  private followFlows(t: Ns, k: KnownRecord): void {
+    const waited = this.flows.see(k);
+    if (waited === undefined || this.marks.length >= this.maxMarks) return;
+    this.marks.push({ t, kind: 'waited', where: k.module, label: waited.slice(0, 400) });
+  }
+
   /** A record's share of the undos to ORD: ORD's exit or crash record marks those it never served (UndosToOrd.atOrdEnd). */
   private followUndoToOrd(t: Ns, k: KnownRecord): void {
     this.undos.see(k);
@@ -571,6 +590,8 @@ export class MonitorModel implements MonitorView {
     this.endMarked = true;
     this.markUnserved(this.live.t, this.undos.atRecordsEnd());
     this.ordGone();
+    this.live.quietDataFlows = this.flows.endLines().map((l) => l.slice(0, 600));
+    this.version++;
   }
 
   /** The `ord_release` line applyHotLine just folded (hotRelease: its schema and cycle): its module (its peer) waited for in that cycle. */

@@ -24,7 +24,7 @@ import { MarksStrip, markTooltip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { priorityText, unheardEventText } from '@contract-studio/build-service/trace';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
-import { NOT_IN_MODEL, crashedModulesText, flowDropText, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, ruleTexts, timeReadout, unheardEventsRow } from './panel-text.js';
+import { NOT_IN_MODEL, crashedModulesText, flowDropText, flowWaitText, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, ruleTexts, quietDataFlowRow, timeReadout, unheardEventsRow } from './panel-text.js';
 import { visibleText } from '@contract-studio/conventions';
 import { shortAtWord } from '../util/short-text.js';
 
@@ -590,16 +590,24 @@ export class MonitorPanel {
       setText(el, unheardEventsRow(port, f));
       return el;
     });
-    const flows = [...[...s.dataFlows].map(([k, f]) => ({ k, f, kind: 'data' })), ...[...s.eventFlows].map(([k, f]) => ({ k, f, kind: 'event' }))]
-      .sort((a, b) => (b.f.dropped ?? 0) - (a.f.dropped ?? 0) || b.f.count - a.f.count).slice(0, 12 - unheard.length);
-    const rows = flows.map(({ k, f, kind }) => {
-      const el = this.row(`flow:${kind}:${k}`, () => h('div', { class: `monitor-flow ${kind}`, 'data-flow': k }));
-      setText(el, `${kind === 'data' ? '━' : '┅'} ${k.replace('->', ' → ')} ×${f.count}${flowDropText(k, f)} · last ${fmtT(f.last)}`);
-      setAttr(el, 'data-pulse', String(pulsing.has(k)));
-      setAttr(el, 'data-dropped', String(f.dropped ?? 0));
+    // the connected data flows that delivered nothing or far less than read, once the records are over (trace's words)
+    const quiet = (this.model?.live ?? s).quietDataFlows.slice(0, 12 - unheard.length).map((line) => {
+      const el = this.row(`quiet:${line}`, () => h('div', { class: 'monitor-flow data quiet', title: line }));
+      setText(el, quietDataFlowRow(line));
       return el;
     });
-    replaceIfChanged(this.flowsEl, [...unheard, ...rows]);
+    const flows = [...[...s.dataFlows].map(([k, f]) => ({ k, f, kind: 'data' })), ...[...s.eventFlows].map(([k, f]) => ({ k, f, kind: 'event' }))]
+      .sort((a, b) => (b.f.dropped ?? 0) - (a.f.dropped ?? 0) || (b.f.waits ?? 0) - (a.f.waits ?? 0) || b.f.count - a.f.count).slice(0, Math.max(0, 12 - unheard.length - quiet.length));
+    const rows = flows.map(({ k, f, kind }) => {
+      const el = this.row(`flow:${kind}:${k}`, () => h('div', { class: `monitor-flow ${kind}`, 'data-flow': k }));
+      setText(el, `${kind === 'data' ? '━' : '┅'} ${k.replace('->', ' → ')} ×${f.count}${flowDropText(k, f)} · last ${fmtT(f.last)}${flowWaitText(f)}`);
+      setAttr(el, 'data-pulse', String(pulsing.has(k)));
+      setAttr(el, 'data-dropped', String(f.dropped ?? 0));
+      setAttr(el, 'data-waited', String(f.waited !== undefined));
+      setAttr(el, 'title', f.waited ?? '');
+      return el;
+    });
+    replaceIfChanged(this.flowsEl, [...unheard, ...quiet, ...rows]);
   }
 }
 

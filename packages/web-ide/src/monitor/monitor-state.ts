@@ -157,6 +157,9 @@ export interface FlowCount {
   /** Values the flow dropped (data_dropped: the consumer's queue full, ...), and the last one's reason. */
   dropped?: number;
   dropReason?: string;
+  /** An event flow's posts that waited for room in its subscriber's full mailbox (`event_waited`), and its first streak in `contract trace`'s words. */
+  waits?: number;
+  waited?: string;
 }
 
 export interface MonitorState {
@@ -181,6 +184,11 @@ export interface MonitorState {
   /** Lines that are no record (unreadable). */
   unknownLines: number;
   /**
+   * The connected data flows that delivered nothing or far less than their reader read, in
+   * `contract trace`'s words (DataFlowUse): told once the records are over (MonitorModel.recordsEnded), empty before.
+   */
+  quietDataFlows: string[];
+  /**
    * Distinct names folded (supervisors, their functions, rules and holds, schemas, modules, flows),
    * and the receivers a supervisor keeps requests for now (counted down when it no longer does): at
    * most MAX_NAMES.
@@ -203,7 +211,7 @@ export const MAX_NAMES = 1024;
 export const RECENT_MARKS = 64;
 
 export function emptyState(): MonitorState {
-  return { t: 0, records: 0, supervisors: new Map(), supervisorChanges: 0, schemas: new Map(), periodic: new Map(), modules: new Map(), dataFlows: new Map(), eventFlows: new Map(), unheardEvents: new Map(), unknownLines: 0, names: 0, namesPastBound: 0, ordPriority: '' };
+  return { t: 0, records: 0, supervisors: new Map(), supervisorChanges: 0, schemas: new Map(), periodic: new Map(), modules: new Map(), dataFlows: new Map(), eventFlows: new Map(), unheardEvents: new Map(), unknownLines: 0, quietDataFlows: [], names: 0, namesPastBound: 0, ordPriority: '' };
 }
 
 /** A deep copy (the state is plain data: objects, arrays and Maps, which structuredClone and postMessage keep). */

@@ -97,6 +97,24 @@ export function flowDropText(key: string, f: FlowCount): string {
 }
 
 /**
+ * ` · ⚠ events PSH:0 -> BIN:0 waited for room in BIN's full mailbox 5 times in 1.18 s (...)` on an
+ * event flow's Deliveries row when its posts waited for room in the subscriber's full mailbox: its
+ * first streak, as `contract trace` tells it (the row's count goes on), else ''.
+ */
+export function flowWaitText(f: FlowCount): string {
+  return f.waited === undefined ? '' : ` · ⚠ ${f.waited}`;
+}
+
+/**
+ * The Deliveries row of a connected data flow that delivered nothing or far less than read, told
+ * once the records are over: `━ ⚠ data flow SRT:1 -> BLT:0 connected for 5.834 s (schema sortLoop): 0
+ * values delivered (SRT posted none on its output :1); BLT read nothing in its 892 releases`.
+ */
+export function quietDataFlowRow(line: string): string {
+  return `━ ⚠ ${line}`;
+}
+
+/**
  * The Deliveries row of an event port whose events no one received: `┅ GCS:1 → no subscriber ×3 ·
  * no one received them · last +3.306199 s`.
  */
