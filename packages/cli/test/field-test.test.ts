@@ -363,8 +363,8 @@ describe('6. a crashed module', () => {
         const io = capture(root);
         expect(await runCli(['trace', 'crashed-logs'], io)).toBe(0);
         const lines = io.stdout.split('\n');
-        expect(lines.at(-4)).toBe('+0.000001s CTL  its last record: no exit record follows (it crashed, was killed, or its code called exit(); `contract run` says which)');
-        expect(lines.at(-3)).toBe('           LOC  no record in its log: it crashed, hung or was killed before writing any (`contract run` says which)');
+        expect(lines.at(-4)).toBe('+0.000001s CTL  its last record: no exit record follows (it crashed, was killed, or its code called exit(); the launcher\'s output says which)');
+        expect(lines.at(-3)).toBe('           LOC  no record in its log: it crashed, hung or was killed before writing any (the launcher\'s output says which)');
         expect(lines.at(-2)).toMatch(/^5 records: /);
     });
 
@@ -381,7 +381,7 @@ describe('6. a crashed module', () => {
         const lines = io.stdout.split('\n');
         expect(lines).toContain('           CTL  2 logs of it in this folder (CTL_1.csv, CTL_2.csv), read as one: a run writes one log per module (two runs\' logs together, or a file named as its log that is not one)');
         expect(lines).toContain('           JSN  no record in its log, only 1 unreadable line(s): not a runtime log (one begins with the CSV header, then the module\'s start record)');
-        expect(lines).toContain('           EMP  no record in its log: it crashed, hung or was killed before writing any (`contract run` says which)');
+        expect(lines).toContain('           EMP  no record in its log: it crashed, hung or was killed before writing any (the launcher\'s output says which)');
         expect(lines.filter((l) => / ORD  .*logs of it|ORD  no record/.test(l))).toEqual([]);
     });
 
@@ -413,7 +413,7 @@ describe('6. a crashed module', () => {
         writeFileSync(join(dir, 'CTL_1.csv'), `${HEADER}\n1000001000,w,CTL,scheduler,,,0,activate S\n1002000000,w,CTL,module_exit,,,0,status=0\n`);
         const io = capture(root);
         expect(await runCli(['trace', 'truncated-logs'], io)).toBe(0);
-        expect(io.stdout).toContain('+0.000500s HOG  its last record; its log holds neither its start nor its exit record: it was cut or rewritten after the module began (its code may have truncated it), and how it ended is not in it (`contract run` says it)\n');
+        expect(io.stdout).toContain('+0.000500s HOG  its last record; its log holds neither its start nor its exit record: it was cut or rewritten after the module began (its code may have truncated it), and how it ended is not in it (the launcher\'s output says it)\n');
         expect(io.stdout).toContain('           CTL  its log lacks its start record: it was cut or rewritten after the module began (its code may have truncated it)\n');
         expect(io.stdout).not.toContain('ORD  its log lacks');
     });
@@ -471,8 +471,8 @@ describe('6. a crashed module', () => {
         let io = capture(root);
         expect(await runCli(['trace', 'two-crashed'], io)).toBe(0);
         expect(io.stdout.split('\n').filter((l) => l.includes('no exit record'))).toEqual([
-            '+0.000001s LOC  its last record: no exit record follows (it crashed, was killed, or its code called exit(); `contract run` says which)',
-            '+0.000501s CTL  its last record: no exit record follows (it crashed, was killed, or its code called exit(); `contract run` says which)',
+            '+0.000001s LOC  its last record: no exit record follows (it crashed, was killed, or its code called exit(); the launcher\'s output says which)',
+            '+0.000501s CTL  its last record: no exit record follows (it crashed, was killed, or its code called exit(); the launcher\'s output says which)',
         ]);
         // every module without its exit record (the runner killed): one line, at the last record
         const killed = join(root, 'run-killed');

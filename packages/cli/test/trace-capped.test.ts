@@ -49,16 +49,16 @@ describe('contract trace: a log the runtime capped', () => {
         const lines = io.stdout.split('\n');
         expect(lines).toContain(`+3.843717s CTL  log capped: log reached its ${BOUND}-byte bound (CONTRACT_LOG_MAX_BYTES): later records are not written`);
         expect(lines).toContain(`+5.005000s CTL  log capped: 667375 records not written after the log reached its ${BOUND}-byte bound`);
-        expect(lines).toContain('+5.005000s CTL  its log ends capped: the module ended after its log reached its bound, so its exit record is not in it (one of the 667375 records not written), not lost to a crash; `contract run` says how it ended');
+        expect(lines).toContain('+5.005000s CTL  its log ends capped: the module ended after its log reached its bound, so its exit record is not in it (one of the 667375 records not written), not lost to a crash; the launcher\'s output says how it ended');
         expect(io.stdout).not.toMatch(/(CTL|ENC) {2}its last record: no exit record follows/);
         expect(lines).toContain('+1.000000s ENC  log capped: log could not be written past 1000 bytes (No space left on device): later records are not written');
-        expect(lines).toContain('+5.004000s ENC  its log ends capped: the module ended after its log could not be written further (a full disk), so its exit record is not in it (one of the 12 records not written), not lost to a crash; `contract run` says how it ended');
+        expect(lines).toContain('+5.004000s ENC  its log ends capped: the module ended after its log could not be written further (a full disk), so its exit record is not in it (one of the 12 records not written), not lost to a crash; the launcher\'s output says how it ended');
         // a capped log is not "not whole", and its exit is not told as a whole run killed
         expect(io.stdout).not.toContain('not whole');
         expect(io.stdout).not.toContain('no module wrote its exit record');
         // a module capped then killed (no last log-capped record): still told as one without its end
         expect(lines).toContain('+2.000000s HMI  log capped: log reached its 4096-byte bound (CONTRACT_LOG_MAX_BYTES): later records are not written');
-        expect(lines).toContain('+2.000000s HMI  its last record: no exit record follows (it crashed, was killed, or its code called exit(); `contract run` says which) (its log had reached its bound; the last log-capped record, which the runtime writes at any end but a SIGKILL, is missing too)');
+        expect(lines).toContain('+2.000000s HMI  its last record: no exit record follows (it crashed, was killed, or its code called exit(); the launcher\'s output says which) (its log had reached its bound; the last log-capped record, which the runtime writes at any end but a SIGKILL, is missing too)');
     });
 
     it('a trace file (--format json of the same logs) tells the same log-capped lines', async () => {

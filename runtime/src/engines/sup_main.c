@@ -151,13 +151,16 @@ static int not_sent(const char *peer, int rc) {
 static int alive(const char *module) { return ModuleState(module) == CONTRACT_OK; }
 
 /* An undo whose receiver has already ended (the launcher stops the supervisors first at a run's
-   end, one after the other; a crash): the undo is logged all the same, then why no request went,
+   end, one after the other; a crash; a kill): the undo is logged all the same, then why no request went,
    as an `error` record (the log says every undo its rule's end made, none is left out silently);
-   stderr stays quiet, as for a peer gone at the run's stop (rt_send_failed). */
+   stderr stays quiet, as for a peer gone at the run's stop (rt_send_failed). At the stop, when it
+   ended is not known here (the launcher's stop of it, or a kill or crash before the stop): "it had
+   already ended" says only what is known; `contract trace` tells a receiver whose records stopped
+   mid-run. */
 static void undo_skipped(const char *peer) {
     char line[256];
     snprintf(line, sizeof line, "STOP request to %.64s: not sent, it has ended (%s)", peer,
-             ContractRunStopping() ? "its stop came first; the run is stopping" : "it crashed or was stopped");
+             ContractRunStopping() ? "it had already ended; the run is stopping" : "it crashed or was stopped");
     ContractLog("error", "", -1, 0, line);
 }
 

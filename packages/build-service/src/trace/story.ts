@@ -15,10 +15,11 @@ import { ReleaseLateness } from './release-lateness.js';
 import { UndosToOrd } from './undos-to-ord.js';
 import { DataFlowUse } from './data-flow-use.js';
 import { EventWaits } from './event-waits.js';
+import { EndedMidRun, RUN_STOPPING } from './ended-mid-run.js';
 import { countRecord, isRule, type KnownRecord, type RecordCounts, type RuleCause, type TraceRecord, type TraceRecordBase } from './records.js';
 
 /** How the runtime ends the detail of an `error` record written while contract-launch stops the run. */
-export const RUN_STOPPING = '; the run is stopping)';
+export { RUN_STOPPING };
 
 /**
  * A rule's cause as a reader writes it: the `sup_rule` cause `elapsed=1000000ns` as `elapsed=1ms`,
@@ -366,6 +367,8 @@ export class StoryTeller {
     private readonly droppingFlows = new Set<string>();
     /** The supervisors' undos to ORD, followed until ORD serves them: those its end left unserved are told (undos-to-ord.ts). */
     private readonly undos = new UndosToOrd();
+    /** Modules whose records stopped mid-run, told at the first sign another gives that they are gone. */
+    private readonly endedMidRun = new EndedMidRun();
     /** Why the run stopped was told (the first module's KILL that says it: the others say the same). */
     private stopWhyTold = false;
     /** Per periodic schema (at most STORY_FOLLOWED): its figures, told before the counts (schemaLines). */
@@ -409,6 +412,7 @@ export class StoryTeller {
         const what = String(k.fields['what'] ?? '');
         if (k.kind === 'supervisor') this.followAction(k, what);
         this.undos.see(k);
+        this.endedMidRun.see(k);
         this.dataFlows.see(k);
         const waited = this.eventWaits.see(k);
         if (waited) return `${at(k)} ${waited}`;
@@ -510,7 +514,10 @@ export class StoryTeller {
         // a supervisor's requests kept for a receiver's full mailbox: when it began, and what came of them
         if (k.kind === 'requests_kept' || k.kind === 'requests_kept_end') return `${at(k)} ${keptRequestsText(k)}`;
         // a request to a module already gone while the launcher stopped the run (no error line on stderr either)
-        if (k.kind === 'error') return k.detail.endsWith(RUN_STOPPING) ? `${at(k)} while the run stopped: ${k.detail}` : `${at(k)} error: ${k.detail}`;
+        if (k.kind === 'error') {
+            const midRun = this.endedMidRun.textFor(k, (ns) => offset(ns - t0));
+            return `${at(k)} ${k.detail.endsWith(RUN_STOPPING) ? 'while the run stopped' : 'error'}: ${k.detail}${midRun ? `; ${midRun}` : ''}`;
+        }
         return undefined;
     }
 

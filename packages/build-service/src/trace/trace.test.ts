@@ -738,6 +738,23 @@ describe("a supervisor's undo that reached ORD's mailbox after ORD's last read o
     const ord = (lines: string[]) => [CSV_HEADER, '1000100000,w,ORD,scheduler,,,0,activate fastLoop (activation #4 from BSE)', ...lines, ''].join('\n');
     const story = (b: string[], o: string[]) => renderStory(parseTrace([{ name: 'BSE_1.csv', text: bse(b) }, { name: 'ORD_1.csv', text: ord(o) }]));
 
+    it('says where ORD\'s records stopped mid-run at the first sign another module gives that it is gone, not only at the end', () => {
+        // field test 69: ORD SIGKILLed at +2.69 s; the supervisor's undo at the stop, +5.09 s, found it ended
+        const notSent = '6000000150,w,BSE,error,,,0,"STOP request to ORD: not sent, it has ended (it had already ended; the run is stopping)"';
+        const killed = story([
+            '3000000000,w,BSE,supervisor,,,0,rule drive.GO active',
+            '6000000000,w,BSE,request_received,contract-launch,,0,KILL',
+            '6000000100,w,BSE,supervisor,ORD,,0,"undo: deactivate schema fastLoop (activation #4, to ORD)"',
+            notSent,
+        ], ['1700000000,w,ORD,ord_release,CAM,,0,schema=fastLoop cycle=1 release=1']);
+        expect(killed).toContain('+5.000000s BSE  while the run stopped: STOP request to ORD: not sent, it has ended (it had already ended; the run is stopping); ' +
+            'ORD\'s records stopped at +0.700000s (its last record), before the run\'s stop, with no exit record: it had ended mid-run (killed, crashed, or its code called exit(); the launcher\'s output says which)');
+        // ORD stopped by the launcher at the stop (its last record after the KILL): nothing added
+        const atStop = story(['6000000000,w,BSE,request_received,contract-launch,,0,KILL', notSent],
+            ['6000000050,w,ORD,request_received,contract-launch,,0,KILL']);
+        expect(atStop).toContain('+5.000000s BSE  while the run stopped: STOP request to ORD: not sent, it has ended (it had already ended; the run is stopping)');
+    });
+
     it('tells with ORD\'s end the undo it never served, as of a run that was stopping', () => {
         const lines = story([
             '6000000000,w,BSE,request_received,contract-launch,,0,KILL',
@@ -759,10 +776,10 @@ describe("a supervisor's undo that reached ORD's mailbox after ORD's last read o
         expect(served).toContain('+5.000000s ORD  exited (status=0 records=3)');
         const notSent = story([
             '6000000100,w,BSE,supervisor,ORD,,0,"undo: deactivate schema fastLoop (activation #4, to ORD)"',
-            '6000000150,w,BSE,error,,,0,"STOP request to ORD: not sent, it has ended (its stop came first; the run is stopping)"',
+            '6000000150,w,BSE,error,,,0,"STOP request to ORD: not sent, it has ended (it had already ended; the run is stopping)"',
         ], ['6000000300,w,ORD,module_exit,,,0,status=0 records=3']);
         expect(notSent).toContain('+5.000000s ORD  exited (status=0 records=3)');
-        expect(notSent).toContain('+5.000000s BSE  while the run stopped: STOP request to ORD: not sent, it has ended (its stop came first; the run is stopping)');
+        expect(notSent).toContain('+5.000000s BSE  while the run stopped: STOP request to ORD: not sent, it has ended (it had already ended; the run is stopping)');
         // ORD crashed during the run with the undo in its mailbox: told without "while the run stopped"
         const crashed = story(['6000000100,w,BSE,supervisor,ORD,,0,"undo: deactivate schema fastLoop (activation #4, to ORD)"'],
             ['6000000300,w,ORD,module_exit,,,0,status=3 records=3']);
@@ -781,7 +798,7 @@ describe("a supervisor's undo that reached ORD's mailbox after ORD's last read o
     it('tells at the records\' end an undo ORD\'s log never answered when ORD wrote no exit record (killed), once its supervisor\'s exit shows the run ended', () => {
         const lines = story([...killedOrd, '6000000300,w,BSE,module_exit,,,0,status=0 records=5'], ordKilled);
         const told = lines.filter((l) => l.includes('no answer to'));
-        expect(told).toEqual(['+5.000000s ORD  while the run stopped: ORD\'s log ends with no exit record (it was killed or terminated: `contract run` says which) ' +
+        expect(told).toEqual(['+5.000000s ORD  while the run stopped: ORD\'s log ends with no exit record (it was killed or terminated: the launcher\'s output says which) ' +
             'and no answer to BSE\'s undo: deactivate schema fastLoop (activation #4): whether ORD served it before its end is unknown (a module killed loses ' +
             'the records it had not written, unless contract-launch wrote them from its log buffers), fastLoop may have stayed active to its end']);
         // told after the records, before the schema figures

@@ -114,7 +114,7 @@ export class UndosToOrd {
         return {
             schemas: left.schemas,
             monoNs: left.monoNs,
-            text: `${this.runStopping ? 'while the run stopped: ' : ''}ORD's log ends with no exit record (it was killed or terminated: \`contract run\` says which) ` +
+            text: `${this.runStopping ? 'while the run stopped: ' : ''}ORD's log ends with no exit record (it was killed or terminated: the launcher's output says which) ` +
                 `and no answer to ${left.words}: whether ORD served it before its end is unknown (a module killed loses the records it had not written, ` +
                 `unless contract-launch wrote them from its log buffers), ${left.schemas.join(', ')} may have stayed active to its end`,
         };

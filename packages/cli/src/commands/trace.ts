@@ -339,8 +339,8 @@ export class ModuleEnds {
                 out.push(this.cutByService.has(m)
                     ? `${at(this.last.get(m)!)} ${m.padEnd(4)} its log was cut here by the build service (its bound on a collected log): later records, its exit record among them, are not in it`
                     : capped !== undefined
-                        ? `${at(this.last.get(m)!)} ${m.padEnd(4)} its log ends capped: the module ended after ${capped.why}, so its exit record is not in it (one of the ${capped.dropped} records not written), not lost to a crash; \`contract run\` says how it ended`
-                        : `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record: no exit record follows (it crashed, was killed, or its code called exit(); \`contract run\` says which)${this.capped.has(m) ? ` (its log had reached its bound; the last log-capped record, which the runtime writes at any end but a SIGKILL, is missing too)` : ''}`);
+                        ? `${at(this.last.get(m)!)} ${m.padEnd(4)} its log ends capped: the module ended after ${capped.why}, so its exit record is not in it (one of the ${capped.dropped} records not written), not lost to a crash; the launcher's output says how it ended`
+                        : `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record: no exit record follows (it crashed, was killed, or its code called exit(); the launcher's output says which)${this.capped.has(m) ? ` (its log had reached its bound; the last log-capped record, which the runtime writes at any end but a SIGKILL, is missing too)` : ''}`);
             }
         }
         // a log with records but not its start: cut or rewritten after its module began (its own
@@ -349,7 +349,7 @@ export class ModuleEnds {
         for (const m of headless) {
             out.push(this.exited.has(m)
                 ? `${''.padStart(10)} ${m.padEnd(4)} its log lacks its start record: it was cut or rewritten after the module began (its code may have truncated it)`
-                : `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record; its log holds neither its start nor its exit record: it was cut or rewritten after the module began (its code may have truncated it), and how it ended is not in it (\`contract run\` says it)`);
+                : `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record; its log holds neither its start nor its exit record: it was cut or rewritten after the module began (its code may have truncated it), and how it ended is not in it (the launcher's output says it)`);
         }
         for (const [m, files] of this.twins) {
             out.push(`${''.padStart(10)} ${m.padEnd(4)} ${files.length} logs of it in this folder (${files.slice(0, 3).map(safeName).join(', ')}${files.length > 3 ? ', ...' : ''}), read as one: ${TWIN_LOGS_WHY}`);
@@ -359,7 +359,7 @@ export class ModuleEnds {
                 const unreadable = this.read.get(m) ?? 0;
                 out.push(unreadable
                     ? `${''.padStart(10)} ${m.padEnd(4)} no record in its log, only ${unreadable} unreadable line(s): not a runtime log (one begins with the CSV header, then the module's start record)`
-                    : `${''.padStart(10)} ${m.padEnd(4)} no record in its log: it crashed, hung or was killed before writing any (\`contract run\` says which)`);
+                    : `${''.padStart(10)} ${m.padEnd(4)} no record in its log: it crashed, hung or was killed before writing any (the launcher's output says which)`);
             }
             const counted = this.counted.get(m), read = this.read.get(m) ?? 0;
             if (counted !== undefined && counted !== read && !this.capped.has(m)) {
