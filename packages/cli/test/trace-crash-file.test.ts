@@ -72,8 +72,40 @@ describe('contract trace: the crash files of a logs folder', () => {
         const { out } = await trace();
         expect(out).toContain(`  #0 the executable+0x${offset}\n`);
         expect(out).toContain(`  not mapped to the code: ${exe} is another build (build-id ${second}), not the executable that crashed\n`);
-        expect(out).toContain(`  map them with the executable that crashed: addr2line -f -i -e ${exe} 0x${offset} (`);
+        // the command names where the build puts the executable of that build, not the rebuilt one beside the logs
+        expect(out).toContain(`  map them with EST's executable of the build that crashed (its build-id must be ${first}: \`readelf -n\` shows it): addr2line -f -i -e ARCH/modules/EST_mod/EST 0x${offset} (ARCH: `);
+        expect(out).not.toContain(`-e ${exe}`);
         expect(out).not.toContain('crash_here at');
+    });
+
+    it('a logs folder copied elsewhere (no executable beside it): says where it looked, and the command needs the executable of that build, not a path that does not exist', async () => {
+        const { buildId, offset } = buildExe();
+        writeFileSync(join(logs, 'EST.crash'), crashFile('EST', buildId, offset));
+        rmSync(exe);
+        const { out } = await trace();
+        expect(out).toContain(`  not mapped to the code: no executable of EST at ${exe} (looked for beside the logs folder, where the generated Makefile builds it: a logs folder copied elsewhere has none there)\n`);
+        expect(out).toContain(`  map them with EST's executable of the build that crashed (its build-id must be ${buildId}: \`readelf -n\` shows it): addr2line -f -i -e ARCH/modules/EST_mod/EST 0x${offset} (ARCH: the generated architecture folder it was built in`);
+        expect(out).not.toContain(`-e ${exe}`);
+    });
+
+    it('a frame in inlined code is one frame: its inlined function, then the function it is inlined into', async () => {
+        const source = join(arch, 'modules', 'EST_mod', 'module.c');
+        writeFileSync(source, ['#include <stdio.h>', 'static volatile int *target;', 'static inline __attribute__((always_inline)) void store(int v)', '{', '    *target = v; /* the crash */', '}',
+            '__attribute__((noinline)) int crash_here(int v)', '{', '    store(v);', '    return v;', '}', 'int main(void) { return crash_here(1); }', ''].join('\n'));
+        try {
+            const { buildId } = buildExe();
+            // an address of crash_here in store's inlined code (addr2line -i names both there)
+            const [start, size] = execFileSync('nm', ['-S', exe], { encoding: 'utf8' }).split('\n').find((l) => / T crash_here$/.test(l))!.split(' ').map((h) => parseInt(h, 16));
+            const offset = Array.from({ length: size! }, (_, i) => (start! + i).toString(16))
+                .find((a) => /^store\n.*\ncrash_here\n/.test(execFileSync('addr2line', ['-f', '-i', '-e', exe, `0x${a}`], { encoding: 'utf8' })))!;
+            expect(offset).toBeDefined();
+            writeFileSync(join(logs, 'EST.crash'), crashFile('EST', buildId, offset));
+            const { out } = await trace();
+            expect(out).toMatch(/\n  #0 store at \S*\/modules\/EST_mod\/module\.c:5 \(inlined into crash_here at \S*\/modules\/EST_mod\/module\.c:9\)\n  #1 libc\.so\.6\+0x2724a\n/);
+            expect(out.match(/\n  #0 /g)).toHaveLength(1);
+        } finally {
+            writeFileSync(source, SOURCE);
+        }
     });
 
     it('hostile crash files: a link, too large, another module\'s report, a path as an object, a bad name: not read, named in warnings', async () => {

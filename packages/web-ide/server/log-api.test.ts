@@ -122,8 +122,9 @@ describe('GET /api/log-folder', () => {
       'EST crashed: signal 11 (SIGSEGV) at address 0x0, executable build-id 0011aabb',
       '  #0 the executable+0x40d8',
       '  #1 libc.so.6+0x2724a',
-      "  not mapped to the code: `contract trace crashed` maps them to files and lines, with the executable beside the logs",
-      "  map them with the executable that crashed: addr2line -f -i -e crashed/../modules/EST_mod/EST 0x40d8 (each caller's return address less 1: its call)",
+      "  not mapped to the code: `contract trace crashed` maps them to files and lines when the module's executable of that build is beside the logs (crashed/../modules/EST_mod/EST)",
+      "  map them with EST's executable of the build that crashed (its build-id must be 0011aabb: `readelf -n` shows it): addr2line -f -i -e ARCH/modules/EST_mod/EST 0x40d8 " +
+        "(ARCH: the generated architecture folder it was built in, a project's src-gen/generated/architecture; each caller's return address less 1: its call)",
       ...['MSC', 'ORD', 'SUP'].map((m) => `crashed/${m}.crash: not read (a crash file is a regular file of at most 32768 bytes holding one crash report of the module it is named after)`),
     ]);
     // no crash file: no crashSites

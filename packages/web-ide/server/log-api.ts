@@ -54,7 +54,7 @@ export async function handleLogApi(paths: WorkspacePaths, req: IncomingMessage, 
 /**
  * The lines the folder's crash files tell (crash-files.ts: read bounded, regular files only, in the
  * exact format naming the module of the file's name); the frames unmapped: the IDE runs no
- * addr2line, `contract trace` does, on the executable beside the logs whose build-id is the report's.
+ * addr2line, `contract trace` does, when the executable beside the logs has the report's build-id.
  */
 async function folderCrashSites(dir: DirAt, rel: string): Promise<string[]> {
   const names = (await WorkspaceFs.list(dir)).filter((d) => d.name.endsWith('.crash')).map((d) => d.name).sort().slice(0, MAX_CRASH_FILES);
@@ -82,8 +82,10 @@ async function folderCrashSites(dir: DirAt, rel: string): Promise<string[]> {
       lines.push(`${shown}: not read (a crash file is a regular file of at most ${MAX_CRASH_FILE_BYTES} bytes holding one crash report of the module it is named after)`);
       continue;
     }
-    const exe = `${rel ? `${rel}/` : ''}../modules/${report.module}_mod/${report.module}`;
-    lines.push(...crashSiteLines(report, exe, null, `\`contract trace ${rel || '.'}\` maps them to files and lines, with the executable beside the logs`));
+    // whether the executable that crashed is beside the logs is not known here (no build-id read): the
+    // command names where the build puts it, with the build-id it must have (crashSiteLines, null)
+    const beside = `${rel ? `${rel}/` : ''}../modules/${report.module}_mod/${report.module}`;
+    lines.push(...crashSiteLines(report, null, null, `\`contract trace ${rel || '.'}\` maps them to files and lines when the module's executable of that build is beside the logs (${beside})`));
   }
   return lines;
 }

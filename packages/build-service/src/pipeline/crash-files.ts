@@ -14,7 +14,7 @@
 import { execFile } from 'node:child_process';
 import { constants, promises as fsp } from 'node:fs';
 import { join } from 'node:path';
-import { addr2lineArgs, CrashReports, MAX_ADDR2LINE_CHARS, parseAddr2line, type CrashReport } from './crash-reports.js';
+import { addr2lineArgs, CrashReports, MAX_ADDR2LINE_CHARS, parseAddr2line, type CrashPlace, type CrashReport } from './crash-reports.js';
 
 /** A crash file's bytes, at most (the runtime's block: 51 lines of 160 characters at most). */
 export const MAX_CRASH_FILE_BYTES = 32 * 1024;
@@ -129,11 +129,14 @@ export function executableBesideLogs(logDir: string, module: string): string {
 }
 
 /**
- * What a report says: its head, then each frame mapped (`#0 est_update at /…/module.c:248`) when
- * `places` are given, else its raw offsets and the addr2line command that maps them (`why`: why
- * they are not mapped).
+ * What a report says: its head, then each frame mapped (`#0 est_update at /…/module.c:248`, a
+ * frame in inlined code as one line: `#1 _exec at /…/module.c:132 (inlined into ModuleMain at
+ * /…/module.c:133)`) when `places` are given, else its raw offsets and the addr2line command that
+ * maps them (`why`: why they are not mapped). `executable`: the one that crashed (its build-id the
+ * report's), named in that command; null when none was found, the command then naming where the
+ * build puts it (`ARCH/modules/M_mod/M`), never a path that is not that executable.
  */
-export function crashSiteLines(report: CrashReport, executable: string, places: ReturnType<typeof parseAddr2line> | null, why: string): string[] {
+export function crashSiteLines(report: CrashReport, executable: string | null, places: ReturnType<typeof parseAddr2line> | null, why: string): string[] {
   const addr = report.signal === 11 || report.signal === 7 ? ` at address 0x${report.address}` : '';
   const lines = [`${report.module} crashed: signal ${report.signal} (${report.signalName})${addr}${report.buildId ? `, executable build-id ${report.buildId}` : ''}`];
   let exeIndex = 0;
@@ -141,14 +144,29 @@ export function crashSiteLines(report: CrashReport, executable: string, places: 
     const at = f.object === 'exe' && places ? places[exeIndex] ?? [] : [];
     if (f.object === 'exe') exeIndex++;
     if (!at.length) lines.push(`  #${i} ${f.object === 'exe' ? 'the executable' : f.object}+0x${f.offset.toString(16)}`);
-    for (const p of at) lines.push(`  #${i} ${p.function} at ${p.file ?? '?'}:${p.line ?? '?'}`);
+    else {
+      // addr2line -i: the innermost place first, then each function it is inlined into, at the call
+      const into = at.slice(1).map(placeText);
+      lines.push(`  #${i} ${placeText(at[0]!)}${into.length ? ` (inlined into ${into.join(', inlined into ')})` : ''}`);
+    }
   });
   if (!places) {
-    const argv = addr2lineArgs(report, executable);
+    const exe = executable ?? `ARCH/modules/${report.module}_mod/${report.module}`;
+    const argv = addr2lineArgs(report, exe);
     lines.push(`  not mapped to the code: ${why}`);
-    if (argv.length) lines.push(`  map them with the executable that crashed: ${['addr2line', '-f', '-i', '-e', executable, ...argv.slice(6)].join(' ')} (each caller's return address less 1: its call)`);
+    if (argv.length) {
+      lines.push(executable !== null
+        ? `  map them with the executable that crashed: ${['addr2line', '-f', '-i', '-e', exe, ...argv.slice(6)].join(' ')} (each caller's return address less 1: its call)`
+        : `  map them with ${report.module}'s executable of the build that crashed${report.buildId ? ` (its build-id must be ${report.buildId}: \`readelf -n\` shows it)` : ''}: ${['addr2line', '-f', '-i', '-e', exe, ...argv.slice(6)].join(' ')} ` +
+          `(ARCH: the generated architecture folder it was built in, a project's src-gen/generated/architecture; each caller's return address less 1: its call)`);
+    }
   }
   return lines;
+}
+
+/** `fn at file:line`, as addr2line tells a place. */
+function placeText(p: CrashPlace): string {
+  return `${p.function} at ${p.file ?? '?'}:${p.line ?? '?'}`;
 }
 
 /**
@@ -170,16 +188,20 @@ export async function readCrashFiles(logDir: string, problems: string[] = []): P
     const id = await elfBuildId(exe);
     let places: ReturnType<typeof parseAddr2line> | null = null;
     let why: string;
-    if (id === null) why = `no executable of ${module} with a build-id at ${exe}`;
+    let crashed: string | null = null;
+    if (id === null) why = (await fsp.lstat(exe).then(() => true, () => false))
+      ? `${exe} has no build-id: not an executable the build made`
+      : `no executable of ${module} at ${exe} (looked for beside the logs folder, where the generated Makefile builds it: a logs folder copied elsewhere has none there)`;
     else if (!report.buildId) why = `the report names no build-id: ${exe} may not be the executable that crashed`;
     else if (id !== report.buildId) why = `${exe} is another build (build-id ${id}), not the executable that crashed`;
     else {
+      crashed = exe;
       const argv = addr2lineArgs(report, exe);
       const out = argv.length ? await runAddr2line(argv) : null;
       places = out === null ? null : parseAddr2line(out);
       why = argv.length ? 'addr2line failed' : 'no frame in the executable';
     }
-    sites.push({ module, report, lines: crashSiteLines(report, exe, places, why) });
+    sites.push({ module, report, lines: crashSiteLines(report, crashed, places, why) });
   }
   return sites;
 }
