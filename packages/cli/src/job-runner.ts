@@ -30,6 +30,8 @@ export function onTerminal(): boolean {
 }
 
 export const SANDBOXES: readonly SandboxChoice[] = SANDBOX_CHOICES;
+/** Said after the launcher's `run directory` line of a sandboxed run: its pids and paths are not the host's. */
+export const SANDBOX_PIDS_NOTE = 'contract run: the pids and paths the run prints are the sandbox\'s (its own pid namespace and root), not the host\'s: docs/runtime-api.md "Process model" (Pids) says how to find a module\'s host pid';
 const FORMATS = ['text', 'json'] as const;
 type Format = (typeof FORMATS)[number];
 
@@ -381,6 +383,8 @@ export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['r
                 // module's errors) and the launcher's lines (it writes on stderr) go to stderr
                 const text = e.source === 'launcher' ? `contract-launch: ${e.line}\n` : `[${e.source}] ${e.line}\n`;
                 if (e.stream === 'stderr') io.err(text); else io.out(text);
+                // the launcher's first line: in the bwrap or docker sandbox (auto is one of them) the run has a pid namespace of its own
+                if (e.source === 'launcher' && e.line.startsWith('run directory ') && opts.sandbox !== 'none') io.err(`${SANDBOX_PIDS_NOTE}\n`);
             }
             return;
         }

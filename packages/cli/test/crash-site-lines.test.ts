@@ -8,7 +8,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { JobEvent } from '@contract-studio/build-service';
-import { makePrinter, type JobOptions, type JobOutcome } from '../src/job-runner.js';
+import { makePrinter, SANDBOX_PIDS_NOTE, type JobOptions, type JobOutcome } from '../src/job-runner.js';
 import { failureText, moduleFailures } from '../src/commands/run-problems.js';
 import { capture } from './capture-io.js';
 
@@ -55,6 +55,21 @@ describe('a crash site in contract run', () => {
         const verbose = printed(true).stderr;
         expect(verbose).toContain('[EST] ==contract-crash== frame 0 exe 0x40d8');
         expect(verbose).toContain('EST crash frame #0 _exec_module_state at src-gen/generated/architecture/modules/EST_mod/module.c:248');
+    });
+
+    it('after the launcher\'s run directory line, says the pids are the sandbox\'s (bwrap, docker, auto), not with the none sandbox', () => {
+        const said = (sandbox: string): string => {
+            const io = capture(root);
+            const print = makePrinter({ dir: root, dirArg: '.', sandbox, format: 'text', verbose: false, progress: false, runtime: undefined, cacheDir: undefined } as JobOptions, io, [], []);
+            print(line('launcher', 'run directory /work/run'));
+            print(line('launcher', 'module SRT (pid 54) died by signal 9 (Killed)'));
+            return io.stderr;
+        };
+        for (const sandbox of ['bwrap', 'docker', 'auto']) {
+            expect(said(sandbox)).toBe(`contract-launch: run directory /work/run\n${SANDBOX_PIDS_NOTE}\ncontract-launch: module SRT (pid 54) died by signal 9 (Killed)\n`);
+        }
+        expect(SANDBOX_PIDS_NOTE).toContain('not the host\'s');
+        expect(said('none')).not.toContain('pid namespace');
     });
 
     it('a module\'s own line that reads like the service\'s is not its site', () => {
