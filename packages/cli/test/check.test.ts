@@ -1,6 +1,6 @@
 /** `contract check`: output formats, exit codes, usage errors — on real files. */
 import { spawnSync } from 'node:child_process';
-import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { cpSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -62,6 +62,29 @@ describe('contract check', () => {
             expect(await runCli(['check', dir, '--format=json'], io)).toBe(0);
             const parsed = JSON.parse(io.stdout) as { diagnostics: Array<{ severity: string; code: string }> };
             expect(parsed.diagnostics.map((d) => `${d.severity} ${d.code}`)).toEqual(['warning import-duplicate']);
+        } finally {
+            rmSync(dir, { recursive: true, force: true });
+        }
+    });
+
+    it('checks a folder of several projects project by project (docs/codegen.md "Where a project is")', async () => {
+        // field test: `contract serve` of a folder of 7 projects showed 84 "defined more than once" errors
+        const dir = mkdtempSync(join(tmpdir(), 'contract-projects-'));
+        try {
+            for (const copy of ['a', 'b']) cpSync(TUTORIAL, join(dir, copy), { recursive: true, filter: (src) => !src.includes('/src-gen') });
+            writeFileSync(join(dir, 'b/types2.contract'), 'datatype TypeA {float i = 0.0};\n');
+            const io = capture(dir);
+            expect(await runCli(['check', '.'], io)).toBe(1);
+            // the duplicate within b only, named by its path in b; a is clean although it defines TypeA too
+            expect(io.stdout.trim().split('\n')).toEqual([
+                "b/datatype.contract:2:10 error type-duplicate-name Datatype 'TypeA' is defined more than once in the project (also in types2.contract); datatype names are unique across the project.",
+                "b/types2.contract:1:10 error type-duplicate-name Datatype 'TypeA' is defined more than once in the project (also in datatype.contract); datatype names are unique across the project."
+            ]);
+            expect(io.stderr).toBe('2 errors, 0 warnings, 0 hints in 27 files of 2 projects (a/, b/), each checked alone\n');
+            rmSync(join(dir, 'b/types2.contract'));
+            const clean = capture(dir);
+            expect(await runCli(['check', '.'], clean)).toBe(0);
+            expect(clean.stdout).toBe('');
         } finally {
             rmSync(dir, { recursive: true, force: true });
         }

@@ -13,6 +13,7 @@ import { CactalDocumentBuilder } from './scoping/cactal-document-builder.js';
 import { CactalScopeProvider } from './scoping/cactal-scope-provider.js';
 import { CactalScopeComputation } from './scoping/cactal-scope-computation.js';
 import { ImportResolver } from './scoping/import-resolver.js';
+import { CactalProjects } from './scoping/projects.js';
 import { CactalDocumentValidator } from './validation/cactal-document-validator.js';
 import { registerValidationChecks } from './validation/cactal-validator.js';
 import { CactalLspModule } from './lsp/cactal-lsp-module.js';
@@ -22,6 +23,10 @@ import { CactalDocumentUpdateHandler } from './lsp/scenario/scenario-document-up
 export type CactalAddedServices = {
     imports: {
         ImportResolver: ImportResolver
+    },
+    projects: {
+        /** Which project a document belongs to (scoping/projects.ts). */
+        Projects: CactalProjects
     }
 };
 
@@ -32,6 +37,9 @@ export type CactalServices = LangiumServices & CactalAddedServices;
 export const CactalModule: Module<CactalServices, PartialLangiumServices & CactalAddedServices> = {
     imports: {
         ImportResolver: (services) => new ImportResolver(services)
+    },
+    projects: {
+        Projects: (services) => new CactalProjects(services.shared)
     },
     parser: {
         ParserErrorMessageProvider: () => new CactalParserErrorMessageProvider(),

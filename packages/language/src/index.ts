@@ -14,6 +14,7 @@ export { checkValue, type ValueCheckOptions } from './validation/value-checker.j
 export * from './validation/timing-analysis.js';
 export { CHECK_FACTORIES, type CheckFactory } from './validation/cactal-validator.js';
 export { ImportResolver } from './scoping/import-resolver.js';
+export { CactalProjects, type FolderTreeProbe } from './scoping/projects.js';
 export { CactalScopeProvider } from './scoping/cactal-scope-provider.js';
 export { PROJECT_TEMPLATES } from './templates/project-templates.js';
 export { addScenarioSupport, ScenarioSupport } from './lsp/scenario/scenario-server.js';

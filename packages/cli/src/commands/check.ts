@@ -1,6 +1,9 @@
 /**
  * `contract check DIR [--format text|json|sarif]`: loads every `.contract` file under DIR, builds the
  * workspace and prints its diagnostics. Exit 1 when there is an error, 0 otherwise, 2 on bad usage.
+ * A DIR of several projects (docs/codegen.md "Where a project is": `examples/`) is checked project
+ * by project, each as if alone (its names, its scheduler configuration), as `contract serve DIR`
+ * shows it; the summary names the projects. (`generate` refuses such a DIR: it writes one tree.)
  */
 import { stat } from 'node:fs/promises';
 import { join, resolve } from 'node:path';
@@ -21,6 +24,7 @@ export const checkCommand: Command = {
         '  text (default): one line per diagnostic, `DIR/file:line:col severity code message`',
         '  json: {"diagnostics":[{"file","line","column","severity","code","message"}]} (file relative to DIR)',
         '  sarif: SARIF 2.1.0 log',
+        'a DIR holding several projects (each a first-level folder, or the folders holding a src-gen/) is checked project by project, each as if alone',
         'exit status: 1 when there is an error or no .contract file in DIR, 0 otherwise (warnings and hints do not fail), 2 on bad usage'
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
@@ -42,7 +46,9 @@ export const checkCommand: Command = {
         else {
             const text = formatText(diagnostics, (file) => join(dirArg, file));
             if (text) io.out(text);
-            io.err(`${summarize(diagnostics)} in ${workspace.documents.length} file${workspace.documents.length === 1 ? '' : 's'}\n`);
+            const { roots } = workspace.layout;
+            const projects = roots.length > 1 ? ` of ${roots.length} projects (${roots.map((r) => safeName(`${r}/`)).join(', ')}), each checked alone` : '';
+            io.err(`${summarize(diagnostics)} in ${workspace.documents.length} file${workspace.documents.length === 1 ? '' : 's'}${projects}\n`);
         }
         if (workspace.documents.length === 0 && !diagnostics.some((d) => d.code === 'source-too-large')) {
             // nothing checked is no green light (a CI step given the wrong folder)

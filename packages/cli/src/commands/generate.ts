@@ -5,7 +5,6 @@
  * created, updated, kept, orphaned and removed; errors go to stderr. Exit 1 when the model has
  * errors (nothing is generated) or a file could not be merged (left untouched), 2 on bad usage.
  */
-import { lstatSync } from 'node:fs';
 import { stat } from 'node:fs/promises';
 import { join, resolve } from 'node:path';
 import type { FinishedRename, GenerationProblem, GenerationReport } from '@contract-studio/codegen';
@@ -97,7 +96,7 @@ async function generateHeld(
         // where the project's root is (conventions' project-root.ts): DIR, unless its files are all in a
         // sub-folder with its own src-gen/ or DIR holds several projects (-o OUT is taken as meant)
         if (typeof outOption !== 'string' && workspace.documents.length > 0) {
-            const { roots, unusedTrees } = projectRootsOf(workspace.documents.map((d) => d.file), (folder) => isTreeFolder(join(dir, folder, SRC_GEN_DIR)));
+            const { roots, unusedTrees } = workspace.layout;
             if (roots.length > 1) {
                 io.err(`${safeName(dirArg)} holds several projects (${roots.map((r) => safeName(`${r}/`)).join(', ')}): generate one of them (contract generate ${safeName(join(dirArg, roots[0]!))}), or name the output with -o OUT; nothing was generated\n`);
                 return EXIT_FAILURE;
@@ -137,9 +136,4 @@ async function listFinishedRenameLeftovers(io: CliIO, finished: FinishedRename, 
     const mentions = findRegionMentions(out, oldNamesMatcher(finished.kind, finished.oldName, finished.identifiers.map(([from]) => from)), finished.identifierOwner);
     const inCode = printRegionMentions(io, mentions, finished.oldName, (f) => safeName(`${outLabel.replace(/\/+$/, '')}/${f}`));
     if (inCode > 0) io.err(`contract generate: the rename of ${finished.kind} ${finished.oldName} -> ${finished.newName} is finished, but ${inCode} use(s) of ${finished.oldName} in protected-region code were not changed (listed above)\n`);
-}
-
-/** `path` is a folder, not a link (a project's generated tree). */
-function isTreeFolder(path: string): boolean {
-    return lstatSync(path, { throwIfNoEntry: false })?.isDirectory() ?? false;
 }

@@ -9,7 +9,8 @@
  * - `identifier-c-reserved`, `identifier-generated-clash` (data.suggestion): rename the element everywhere to a name the
  *   generated C does not take (the suggestion, or the next free `<name>_N` if the rename rules refuse it).
  */
-import { CstUtils, type AstNode, type Grammar, type IndexManager, type LangiumDocument, type LangiumDocuments, type References } from 'langium';
+import { CstUtils, type AstNode, type Grammar, type LangiumDocument, type LangiumDocuments, type References } from 'langium';
+import type { CactalProjects } from '../scoping/projects.js';
 import type { CodeActionProvider } from 'langium/lsp';
 import { CodeActionKind, type CodeAction, type CodeActionParams, type Diagnostic } from 'vscode-languageserver-protocol';
 import { isModule, isSupervisor, type Model } from '../generated/ast.js';
@@ -24,13 +25,13 @@ export class CactalCodeActionProvider implements CodeActionProvider {
     private readonly references: References;
     private readonly documents: LangiumDocuments;
     private readonly grammar: Grammar;
-    private readonly index: IndexManager;
+    private readonly projects: CactalProjects;
 
     constructor(services: CactalServices) {
         this.references = services.references.References;
         this.documents = services.shared.workspace.LangiumDocuments;
         this.grammar = services.Grammar;
-        this.index = services.shared.workspace.IndexManager;
+        this.projects = services.projects.Projects;
     }
 
     getCodeActions(document: LangiumDocument, params: CodeActionParams): CodeAction[] {
@@ -105,7 +106,7 @@ export class CactalCodeActionProvider implements CodeActionProvider {
     private renameReserved(document: LangiumDocument, diagnostic: Diagnostic, suggestion: string): CodeAction | undefined {
         const node = this.namedNodeAt(document, diagnostic);
         if (!node?.name) return undefined;
-        const free = (candidate: string) => renameProblem(node, candidate, this.grammar, this.index) === undefined;
+        const free = (candidate: string) => renameProblem(node, candidate, this.grammar, this.projects.indexOf(document.uri)) === undefined;
         const newName = free(suggestion) ? suggestion : suggestName(node.name, free);
         if (!free(newName)) return undefined;
         return {
@@ -113,7 +114,7 @@ export class CactalCodeActionProvider implements CodeActionProvider {
             kind: CodeActionKind.QuickFix,
             diagnostics: [diagnostic],
             isPreferred: true,
-            edit: renameEdits(this.references, this.documents, node, newName)
+            edit: renameEdits(this.references, this.documents, this.projects, node, newName)
         };
     }
 
@@ -137,7 +138,7 @@ export class CactalCodeActionProvider implements CodeActionProvider {
             kind: CodeActionKind.QuickFix,
             diagnostics: [diagnostic],
             isPreferred: true,
-            edit: renameEdits(this.references, this.documents, node, suggestion)
+            edit: renameEdits(this.references, this.documents, this.projects, node, suggestion)
         };
     }
 }

@@ -4,7 +4,8 @@
  * The new name is checked first (identifier, keywords, `[A-Z]{3}` for modules and supervisors,
  * clashes); a refused name answers the request with an error message the editor shows.
  */
-import { CstUtils, type AstNode, type Grammar, type IndexManager, type LangiumDocument, type LangiumDocuments } from 'langium';
+import { CstUtils, type AstNode, type Grammar, type LangiumDocument, type LangiumDocuments } from 'langium';
+import type { CactalProjects } from '../scoping/projects.js';
 import { DefaultRenameProvider } from 'langium/lsp';
 import { LSPErrorCodes, ResponseError, type Range, type RenameParams, type TextDocumentPositionParams, type WorkspaceEdit } from 'vscode-languageserver-protocol';
 import type { CactalServices } from '../cactal-module.js';
@@ -13,13 +14,13 @@ import { renameEdits } from './rename-edits.js';
 
 export class CactalRenameProvider extends DefaultRenameProvider {
     private readonly documents: LangiumDocuments;
-    private readonly index: IndexManager;
+    private readonly projects: CactalProjects;
     private readonly grammar: Grammar;
 
     constructor(services: CactalServices) {
         super(services);
         this.documents = services.shared.workspace.LangiumDocuments;
-        this.index = services.shared.workspace.IndexManager;
+        this.projects = services.projects.Projects;
         this.grammar = services.Grammar;
     }
 
@@ -27,9 +28,9 @@ export class CactalRenameProvider extends DefaultRenameProvider {
         const target = this.targetAt(document, document.textDocument.offsetAt(params.position));
         if (!target) return undefined;
         if (target.name === params.newName) return { changes: {} };
-        const problem = renameProblem(target, params.newName, this.grammar, this.index);
+        const problem = renameProblem(target, params.newName, this.grammar, this.projects.indexOf(document.uri));
         if (problem) throw new ResponseError(LSPErrorCodes.RequestFailed, problem);
-        return renameEdits(this.references, this.documents, target, params.newName);
+        return renameEdits(this.references, this.documents, this.projects, target, params.newName);
     }
 
     /**

@@ -3,7 +3,8 @@
  * keyword of Cactal or C nor a name the generated C already takes (validation/c-names/); modules and supervisors exactly three upper-case letters (not `ORD`);
  * no clash with a sibling member or with another top-level element of the same family.
  */
-import { AstUtils, GrammarAST, type AstNode, type Grammar, type IndexManager } from 'langium';
+import { AstUtils, GrammarAST, type AstNode, type Grammar } from 'langium';
+import type { ProjectIndex } from '../scoping/projects.js';
 import {
     isConstant, isEnumMember, isEnumType, isDataType, isField, isFunctionPrototype, isLocalVariable, isModel, isModule, isParameter, isPort, isRule, isSchema,
     isSupervisionFunction, isSupervisor, isFunctionParameter, isSchemaParameter, isFunctionArgument
@@ -78,7 +79,7 @@ function siblingNames(node: AstNode): string[] {
 }
 
 /** The project's enumeration constants (reserved-names.ts enumConstantsOf), from the index. */
-function projectEnumConstants(index: IndexManager): Map<string, string[]> {
+function projectEnumConstants(index: ProjectIndex): Map<string, string[]> {
     return enumConstantsOf(index.allElements('EnumType').map((d) => d.node).filter(isEnumType));
 }
 
@@ -95,7 +96,7 @@ const FOUND_BY_NAME = ['Module', 'Supervisor', 'Schema', 'DataType', 'EnumType',
  * finds by name alone (an enumeration named like a module: legal Cactal, but then neither could be
  * renamed by that name), or undefined. Clashes of one kind are said by the rules below.
  */
-function renamedByNameClash(node: AstNode, newName: string, index: IndexManager): string | undefined {
+function renamedByNameClash(node: AstNode, newName: string, index: ProjectIndex): string | undefined {
     const foundByName = isModule(node) || isSupervisor(node) || isSchema(node) || isDataType(node) || isEnumType(node) || isFunctionPrototype(node);
     if (!foundByName) return undefined;
     const family: readonly string[] = isModule(node) || isSupervisor(node) ? ['Module', 'Supervisor'] : isDataType(node) || isEnumType(node) ? ['DataType', 'EnumType'] : [];
@@ -106,7 +107,7 @@ function renamedByNameClash(node: AstNode, newName: string, index: IndexManager)
 }
 
 /** Why `newName` cannot name `node`, or undefined when it can. */
-export function renameProblem(node: AstNode & { name?: string }, newName: string, grammar: Grammar, index: IndexManager): string | undefined {
+export function renameProblem(node: AstNode & { name?: string }, newName: string, grammar: Grammar, index: ProjectIndex): string | undefined {
     const what = kindWord(node);
     if (!IDENTIFIER.test(newName)) {
         return `'${newName}' is not a valid name: ${aWord(what)} name starts with a letter and has only letters, digits and '_'.`;

@@ -12,7 +12,7 @@ import type { Diagnostic } from 'vscode-languageserver-types';
 import { createCactalServices, type CactalServices } from '../cactal-module.js';
 import type { Import, Model } from '../generated/ast.js';
 import { DEFAULT_MAX_IMPORT_BYTES, lexicalRefusal, resolveConfinedImport } from './confined-import.js';
-import { SRC_GEN_DIR } from '@contract-studio/conventions';
+import { SRC_GEN_DIR, projectRootsOf } from '@contract-studio/conventions';
 
 export type SeverityName = 'error' | 'warning' | 'info' | 'hint';
 
@@ -49,6 +49,18 @@ export interface LoadedWorkspace {
     diagnostics: WorkspaceDiagnostic[];
     /** The services that built the workspace (to reuse for further queries). */
     services: CactalServices;
+    /**
+     * The projects of the workspace by the rule of docs/codegen.md "Where a project is" (conventions'
+     * project-root.ts): their roots relative to the workspace directory ('' = the directory itself),
+     * sorted, and the generated trees met on the way that are not used. Each document was checked
+     * with the documents of its project only.
+     */
+    layout: { roots: string[]; unusedTrees: string[] };
+}
+
+/** `path` is a folder, not a link (a project's generated tree: a linked `src-gen` is refused by generate). */
+export function isTreeFolder(path: string): boolean {
+    return lstatSync(path, { throwIfNoEntry: false })?.isDirectory() ?? false;
 }
 
 export interface LoadWorkspaceOptions {
@@ -203,6 +215,7 @@ export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions =
     if (!info?.isDirectory()) throw new Error(`${dir} is not a directory`);
     const services = options.services ?? createCactalServices(NodeFileSystem).Cactal;
     const shared = services.shared;
+    services.projects.Projects.configure({ openedFolders: [URI.file(root)], probe: (folder) => isTreeFolder(join(folder.fsPath, SRC_GEN_DIR)) });
     const notFiles: Array<{ path: string; what: string; folder?: true }> = [];
     const found = await findContractFiles(root, options.skipDirs, notFiles);
     // a file larger than a build reads is not read either (a 700 MB file ended check with V8's "Cannot create a string longer than ...")
@@ -276,5 +289,6 @@ export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions =
         diagnostics.push(whole(n.path, 'warning', SOURCE_NOT_FILE_CODE, `${n.what}: not read here, and a build (contract build, the IDE's build service) refuses the project for it, nothing built; put the file itself there`));
     }
     diagnostics.sort((a, b) => a.file.localeCompare(b.file) || a.line - b.line || a.column - b.column);
-    return { dir: root, documents, diagnostics, services };
+    const layout = projectRootsOf(documents.map((d) => d.file), (folder) => isTreeFolder(join(root, folder, SRC_GEN_DIR)));
+    return { dir: root, documents, diagnostics, services, layout: { roots: layout.roots, unusedTrees: layout.unusedTrees } };
 }

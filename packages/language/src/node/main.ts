@@ -12,12 +12,17 @@ import { createConnection, ProposedFeatures } from 'vscode-languageserver/node.j
 import { createCactalServices } from '../cactal-module.js';
 import { addScenarioSupport } from '../lsp/scenario/scenario-server.js';
 import { followImportsWithoutFolders } from './follow-imports.js';
+import { isTreeFolder } from './load-workspace.js';
+import { SRC_GEN_DIR } from '@contract-studio/conventions';
+import { join } from 'node:path';
 
 if (!process.argv.some((a) => a === '--stdio' || a === '--node-ipc' || a.startsWith('--socket') || a.startsWith('--pipe'))) {
     process.argv.push('--stdio');
 }
 const connection = createConnection(ProposedFeatures.all);
 const { shared, Cactal } = createCactalServices({ connection, ...NodeFileSystem });
+// the projects of the workspace folders (scoping/projects.ts): a generated tree is a real folder, as generate has it
+Cactal.projects.Projects.configure({ probe: (folder) => isTreeFolder(join(folder.fsPath, SRC_GEN_DIR)) });
 followImportsWithoutFolders(shared, Cactal);
 addScenarioSupport(shared);
 startLanguageServer(shared);

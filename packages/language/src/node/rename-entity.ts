@@ -168,9 +168,9 @@ export function planRename(ws: LoadedWorkspace, spec: string, newName: string): 
     // a supervision function's parameter is not a module's: no C variable of a module is named after it
     const kind = isFunctionParameter(target) ? 'function parameter' : kindWord(target);
     if (target.name === newName) throw new RenameError(`${kind} ${target.name} already has that name`);
-    const problem = renameProblem(target, newName, services.Grammar, services.shared.workspace.IndexManager);
+    const problem = renameProblem(target, newName, services.Grammar, services.projects.Projects.indexOf(AstUtils.getDocument(target).uri));
     if (problem) throw new RenameError(problem);
-    const edit = renameEdits(services.references.References, services.shared.workspace.LangiumDocuments, target, newName);
+    const edit = renameEdits(services.references.References, services.shared.workspace.LangiumDocuments, services.projects.Projects, target, newName);
     const files: PlannedFileEdit[] = [];
     for (const [uri, edits] of Object.entries(edit.changes ?? {})) {
         const doc = ws.documents.find((d) => d.document.uri.toString() === uri);

@@ -4,7 +4,7 @@
  * contract-launch's bound and the build service's default process limit, told before any build
  * (packages/conventions/src/run-bounds.ts: the numbers the launcher and the sandbox use).
  */
-import { WorkspaceCache, type AstNode, type ValidationAcceptor, type ValidationChecks } from 'langium';
+import { AstUtils, WorkspaceCache, type AstNode, type ValidationAcceptor, type ValidationChecks } from 'langium';
 import {
     DEFAULT_PROCESS_LIMIT, LAUNCHER_MAX_MODULES, modulesUnderProcessLimit, runThreads, THREADS_PER_MODULE
 } from '@contract-studio/conventions';
@@ -14,7 +14,7 @@ import { ArchitectureCodes } from './codes/architecture.js';
 import { report } from './report.js';
 
 interface Census {
-    /** Every module and supervisor of the workspace, files in path order, each file's in its order. */
+    /** Every module and supervisor of the project, files in path order, each file's in its order. */
     processes: Array<Module | Supervisor>;
     /** Each one's place in `processes`. */
     index: Map<Module | Supervisor, number>;
@@ -24,8 +24,9 @@ interface Census {
 
 export function architectureChecks(services: CactalServices): ValidationChecks<CactalAstType> {
     const cache = new WorkspaceCache<string, Census>(services.shared);
-    const census = (): Census => cache.get('census', () => {
-        const docs = [...services.shared.workspace.LangiumDocuments.all].sort((a, b) => a.uri.toString() < b.uri.toString() ? -1 : a.uri.toString() > b.uri.toString() ? 1 : 0);
+    const projects = services.projects.Projects;
+    const census = (node: AstNode): Census => cache.get(projects.keyOf(AstUtils.getDocument(node).uri), () => {
+        const docs = projects.documentsOf(AstUtils.getDocument(node).uri).sort((a, b) => a.uri.toString() < b.uri.toString() ? -1 : a.uri.toString() > b.uri.toString() ? 1 : 0);
         const processes: Array<Module | Supervisor> = [];
         let modules = 0, supervisors = 0;
         for (const doc of docs) {
@@ -38,7 +39,7 @@ export function architectureChecks(services: CactalServices): ValidationChecks<C
         }
         return { processes, index: new Map(processes.map((p, i) => [p, i])), modules, supervisors };
     });
-    const check = (node: Module | Supervisor, accept: ValidationAcceptor) => checkProcesses(node, census(), accept);
+    const check = (node: Module | Supervisor, accept: ValidationAcceptor) => checkProcesses(node, census(node), accept);
     return { Module: check, Supervisor: check };
 }
 

@@ -69,6 +69,7 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
         const reflection = this.services.shared.AstReflection;
         const index = this.services.shared.workspace.IndexManager;
         const imports = this.services.imports.ImportResolver;
+        const projects = this.services.projects.Projects;
         for (const reference of document.references) {
             const linkingError = reference.error;
             if (!linkingError) continue;
@@ -86,7 +87,7 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
             const topLevel = referenceType && ['DataType', 'NamedType', 'Constant', 'ValueSymbol', 'FunctionPrototype', 'Module', 'Supervisor', 'Schema', 'EventSource'].includes(referenceType);
             if (topLevel && refText) {
                 const visible = imports.visibleUris(info.container);
-                const candidate = index.allElements(referenceType).find((d) => d.name === refText && !visible.has(d.documentUri.toString()));
+                const candidate = index.allElements(referenceType).find((d) => d.name === refText && !visible.has(d.documentUri.toString()) && projects.sameProject(d.documentUri, document.uri));
                 if (candidate) {
                     const importPath = imports.relativeImportPath(document.uri, candidate.documentUri);
                     diagnostics.push(this.toDiagnostic(ImportCodes['import-not-imported'].severity,
@@ -96,7 +97,7 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
                 }
             }
             // a supervisor where a module is expected (`SUP:1 =* MAB:0` in an event schema): say what it is
-            if (referenceType === 'Module' && refText && index.allElements('Supervisor').some((d) => d.name === refText)) {
+            if (referenceType === 'Module' && refText && index.allElements('Supervisor').some((d) => d.name === refText && projects.sameProject(d.documentUri, document.uri))) {
                 diagnostics.push(this.toDiagnostic(SyntaxCodes['linking-error'].severity, supervisorNotModule(refText, info.container.$type), {
                     ...base,
                     code: DocumentValidator.LinkingError,
@@ -106,7 +107,7 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
             }
             // a top-level name: the closest one of that kind in the workspace (`LNI` -> 'LIN'); a
             // variable: the closest of those of its context and these (describeUnresolved)
-            const globals = topLevel && referenceType && refText ? index.allElements(referenceType).map((d) => d.name).distinct().toArray() : [];
+            const globals = topLevel && referenceType && refText ? index.allElements(referenceType).filter((d) => projects.sameProject(d.documentUri, document.uri)).map((d) => d.name).distinct().toArray() : [];
             const described = describeUnresolved(info, refText, linkingError.message, globals);
             if (described === undefined) continue; // follows from another unresolved reference, reported there
             const near = isVariableRef(info.container) ? '' : nearName(refText, globals);

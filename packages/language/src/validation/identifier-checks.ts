@@ -55,20 +55,20 @@ const datatypeSets = new WeakMap<MultiMap<string, AstNodeDescription>, ProjectCN
  * The project's names that the reserved-name rules depend on (cached per workspace build: the
  * tables of one build are all rebuilt together, so the datatype table keys the others too).
  */
-export function projectCNames(names: ProjectNames): ProjectCNames {
-    const byName = names.byName(['DataType', 'EnumType']);
+export function projectCNames(names: ProjectNames, context: AstNode): ProjectCNames {
+    const byName = names.byName(['DataType', 'EnumType'], context);
     let project = datatypeSets.get(byName);
     if (!project) {
-        const enumConstants = enumConstantsOf(names.nodesOf('EnumType') as EnumType[]);
+        const enumConstants = enumConstantsOf(names.nodesOf('EnumType', context) as EnumType[]);
         const moduleVariables = new Set<string>();
-        for (const node of names.nodesOf('Module')) {
+        for (const node of names.nodesOf('Module', context)) {
             const m = node as Module;
             for (const v of [...parametersOf(m), ...portsOf(m).map((p) => p.port)]) if (v.name) moduleVariables.add(v.name);
         }
         project = {
             datatypes: new Set(byName.keys()),
-            constants: new Set(names.byName(['Constant']).keys()),
-            functions: new Set(names.byName(['FunctionPrototype']).keys()),
+            constants: new Set(names.byName(['Constant'], context).keys()),
+            functions: new Set(names.byName(['FunctionPrototype'], context).keys()),
             enumConstants,
             moduleVariables
         };
@@ -94,7 +94,7 @@ function checkIdentifier(node: AstNode & { name?: string }, accept: ValidationAc
     }
     const role = cNameRole(node);
     if (!role) return;
-    const project = projectCNames(names);
+    const project = projectCNames(names, node);
     const why = cNameConflict(name, role, project);
     if (!why) return;
     const suggestion = suggestName(name, (candidate) => cNameConflict(candidate, role, project) === undefined);
@@ -114,11 +114,11 @@ function kindWord(node: AstNode): string {
 const headerIndexes = new WeakMap<MultiMap<string, AstNodeDescription>, CommonHeaderIndex>();
 
 /** The common/ headers of the project's datatypes and functions (cached per workspace build). */
-export function commonHeaders(names: ProjectNames): CommonHeaderIndex {
-    const datatypes = names.byName(['DataType', 'EnumType']);
+export function commonHeaders(names: ProjectNames, context: AstNode): CommonHeaderIndex {
+    const datatypes = names.byName(['DataType', 'EnumType'], context);
     let index = headerIndexes.get(datatypes);
     if (!index) {
-        const functions = names.byName(['FunctionPrototype']);
+        const functions = names.byName(['FunctionPrototype'], context);
         index = new CommonHeaderIndex([
             ...[...datatypes.keys()].map((name) => ({ kind: 'datatype' as const, name })),
             ...[...functions.keys()].map((name) => ({ kind: 'function' as const, name }))
@@ -140,7 +140,7 @@ function checkEnumMember(member: EnumMember, accept: ValidationAcceptor, names: 
         return;
     }
     const cName = `${owner.name}_${member.name}`;
-    const project = projectCNames(names);
+    const project = projectCNames(names, member);
     const self = `member ${member.name} of enumeration ${owner.name}`;
     // a datatype name never equals a constant's (type-checks.ts), but a member's C name may
     const conflict = (c: string) => enumConstantConflict(c, self, project);
@@ -156,7 +156,7 @@ function checkEnumMember(member: EnumMember, accept: ValidationAcceptor, names: 
 function checkCommonHeader(node: DataType | EnumType | FunctionPrototype, accept: ValidationAcceptor, names: ProjectNames): void {
     if (!node.name) return;
     const owner = { kind: isFunctionPrototype(node) ? 'function' as const : 'datatype' as const, name: node.name };
-    const index = commonHeaders(names);
+    const index = commonHeaders(names, node);
     const clash = index.clash(owner);
     if (!clash) return;
     const suggestion = suggestName(node.name, (candidate) => index.clash({ kind: owner.kind, name: candidate }) === undefined);

@@ -161,11 +161,11 @@ class ImportChecker {
         return used;
     }
 
-    /** A project file with the same name as a missing import, as a path relative to the importer. */
+    /** A file of the importer's project with the same name as a missing import, as a path relative to the importer. */
     private similarFile(document: LangiumDocument, missing: URI): string | undefined {
         const name = UriUtils.basename(missing);
         for (const [, doc] of this.documentsByUri()) {
-            if (doc !== document && UriUtils.basename(doc.uri) === name) return this.imports.relativeImportPath(document.uri, doc.uri);
+            if (doc !== document && UriUtils.basename(doc.uri) === name && this.services.projects.Projects.sameProject(doc.uri, document.uri)) return this.imports.relativeImportPath(document.uri, doc.uri);
         }
         return undefined;
     }

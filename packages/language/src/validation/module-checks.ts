@@ -2,7 +2,7 @@
  * docs/language-reference.md §3: module and supervisor names, project-wide uniqueness, block order, synchronous and
  * asynchronous restrictions, port indexes per kind and direction, member names, time literals.
  */
-import { AstUtils, type ValidationAcceptor, type ValidationChecks } from 'langium';
+import { type ValidationAcceptor, type ValidationChecks } from 'langium';
 import {
     isDataFlowsBlock, isEventFlowsBlock, isParametersBlock, isSchedulingBlock,
     type CactalAstType, type Module, type ModuleBlock, type Parameter, type Port, type Supervisor, type TimeValue
@@ -15,7 +15,6 @@ import { C_INT_MAX, DURATION_NS_MAX, exactNanoseconds } from '../model/numbers.j
 import { checkBlockOrder, type BlockOrder } from './block-order.js';
 import { ModuleCodes } from './codes/modules.js';
 import { TypeCodes } from './codes/types.js';
-import { otherLocations } from './locations.js';
 import { ProjectNames } from './project-index.js';
 import { report } from './report.js';
 import { writtenInt } from './value-checker.js';
@@ -69,9 +68,9 @@ function checkModuleName(node: Module | Supervisor, names: ProjectNames, accept:
             { node, property: 'name', data: suggestion ? { suggestion } : {} });
         return;
     }
-    const same = names.byName(['Module', 'Supervisor']).get(node.name);
+    const same = names.byName(['Module', 'Supervisor'], node).get(node.name);
     if (same.length > 1) {
-        const where = otherLocations(AstUtils.getDocument(node).uri.toString(), same.map((d) => d.documentUri));
+        const where = names.otherLocations(node, same.map((d) => d.documentUri));
         report(accept, ModuleCodes['module-name-duplicate'],
             `'${node.name}' names more than one module or supervisor (also in ${where}); names are unique across the project.`,
             { node, property: 'name' });

@@ -1,9 +1,11 @@
 /**
  * Project-wide elements that have no name in the index (the scheduler configuration), found by
- * scanning the workspace's documents once per workspace build.
+ * scanning the documents of a project (scoping/projects.ts) once per workspace build.
  */
-import { WorkspaceCache, type LangiumCoreServices, type URI } from 'langium';
+import { AstUtils, WorkspaceCache, type AstNode, type URI } from 'langium';
 import { isModel, isSchedulerConfiguration, type SchedulerConfiguration } from '../generated/ast.js';
+import type { CactalServices } from '../cactal-module.js';
+import { otherLocations } from './locations.js';
 
 export interface Located<T> {
     node: T;
@@ -13,15 +15,17 @@ export interface Located<T> {
 export class ProjectElements {
     private readonly cache: WorkspaceCache<string, Array<Located<SchedulerConfiguration>>>;
 
-    constructor(private readonly services: LangiumCoreServices) {
+    constructor(private readonly services: CactalServices) {
         this.cache = new WorkspaceCache(services.shared);
     }
 
-    /** Every scheduler configuration of the project, in document order. */
-    schedulerConfigurations(): Array<Located<SchedulerConfiguration>> {
-        return this.cache.get('scheduler', () => {
+    /** Every scheduler configuration of the project of `context`, in document order. */
+    schedulerConfigurations(context: AstNode): Array<Located<SchedulerConfiguration>> {
+        const uri = AstUtils.getDocument(context).uri;
+        const projects = this.services.projects.Projects;
+        return this.cache.get(projects.keyOf(uri), () => {
             const found: Array<Located<SchedulerConfiguration>> = [];
-            for (const doc of this.services.shared.workspace.LangiumDocuments.all) {
+            for (const doc of projects.documentsOf(uri)) {
                 const root = doc.parseResult?.value;
                 if (!isModel(root)) continue;
                 for (const element of root.elements) {
@@ -30,5 +34,10 @@ export class ProjectElements {
             }
             return found;
         });
+    }
+
+    /** Where the other occurrences of `node`'s kind are, for its message (locations.ts). */
+    otherLocations(node: AstNode, occurrences: URI[]): string {
+        return otherLocations(this.services.projects.Projects, AstUtils.getDocument(node).uri, occurrences);
     }
 }

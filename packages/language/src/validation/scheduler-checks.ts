@@ -3,7 +3,7 @@
  * schemas only, every module of a listed schema listed, every periodic schema a supervisor
  * activates listed, and the combined utilisation of the listed schemas.
  */
-import { AstUtils, type Reference, type ValidationAcceptor, type ValidationChecks } from 'langium';
+import { type Reference, type ValidationAcceptor, type ValidationChecks } from 'langium';
 import {
     isSchedulerModules, isSchedulerSchemas,
     type ActivateSchema, type CactalAstType, type Module, type SchedulerConfiguration, type Schema
@@ -11,7 +11,6 @@ import {
 import type { CactalServices } from '../cactal-module.js';
 import { scheduledModulesOf, scheduledSchemasOf } from '../model/blocks.js';
 import { SchedulerCodes } from './codes/scheduler.js';
-import { otherLocations } from './locations.js';
 import { ProjectElements } from './project-elements.js';
 import { report } from './report.js';
 import { combinedUtilisation, schemaModules, schemaUtilisation } from './timing-analysis.js';
@@ -31,9 +30,9 @@ export function schedulerChecks(services: CactalServices): ValidationChecks<Cact
 }
 
 function checkUnique(config: SchedulerConfiguration, elements: ProjectElements, accept: ValidationAcceptor): void {
-    const all = elements.schedulerConfigurations();
+    const all = elements.schedulerConfigurations(config);
     if (all.length <= 1) return;
-    const where = otherLocations(AstUtils.getDocument(config).uri.toString(), all.map((c) => c.uri));
+    const where = elements.otherLocations(config, all.map((c) => c.uri));
     report(accept, SchedulerCodes['scheduler-duplicate'],
         `The project already has a scheduler configuration (also in ${where}); there is one per project: merge their modules and schemas.`,
         { node: config, keyword: 'scheduler' });
@@ -112,7 +111,7 @@ function checkUtilisation(config: SchedulerConfiguration, accept: ValidationAcce
 function checkActivatedSchemaListed(action: ActivateSchema, elements: ProjectElements, accept: ValidationAcceptor): void {
     const schema = action.schema?.ref;
     if (!schema || schema.kind !== 'periodic') return;
-    const configs = elements.schedulerConfigurations();
+    const configs = elements.schedulerConfigurations(action);
     if (configs.some((c) => scheduledSchemasOf(c.node).some((r) => r.ref === schema))) return;
     report(accept, SchedulerCodes['scheduler-schema-unlisted'],
         configs.length === 0

@@ -3,7 +3,7 @@
  * schemas, module kinds, the scheduling graph (only the schema's modules, acyclic), communications
  * (kinds, types, periodicity, one producer per input port) and the timing analysis warnings.
  */
-import { AstUtils, type AstNode, type ValidationAcceptor, type ValidationChecks } from 'langium';
+import { type AstNode, type ValidationAcceptor, type ValidationChecks } from 'langium';
 import {
     isDataCommunication, isModulesBlock, isRealtimeBlock, isSchedulingGraphBlock,
     type CactalAstType, type Communication, type Module, type Port, type Schema, type SchemaBlock
@@ -17,7 +17,6 @@ import { checkBlockOrder, type BlockOrder } from './block-order.js';
 import { SchemaCodes } from './codes/schemas.js';
 import { TypeCodes } from './codes/types.js';
 import { SchedulerCodes } from './codes/scheduler.js';
-import { otherLocations } from './locations.js';
 import { ProjectElements } from './project-elements.js';
 import { ProjectNames } from './project-index.js';
 import { report, type ReportInfo } from './report.js';
@@ -71,9 +70,9 @@ function checkSchemaName(schema: Schema, names: ProjectNames, accept: Validation
             `Schema name '${schema.name.slice(0, 20)}…' has ${schema.name.length} characters: at most ${NAME_CHARS_MAX} (the requests that activate a schema carry its name in 64 bytes).`,
             { node: schema, property: 'name' });
     }
-    const same = names.byName(['Schema']).get(schema.name);
+    const same = names.byName(['Schema'], schema).get(schema.name);
     if (same.length <= 1) return;
-    const where = otherLocations(AstUtils.getDocument(schema).uri.toString(), same.map((d) => d.documentUri));
+    const where = names.otherLocations(schema, same.map((d) => d.documentUri));
     report(accept, SchemaCodes['schema-name-duplicate'],
         `Schema '${schema.name}' is defined more than once (also in ${where}); schema names are unique among all schemas, periodic and event.`,
         { node: schema, property: 'name' });
@@ -258,7 +257,7 @@ function checkTiming(schema: Schema, accept: ValidationAcceptor): void {
 
 function checkSchedulerExists(schema: Schema, elements: ProjectElements, accept: ValidationAcceptor): void {
     if (schema.kind !== 'periodic' || !schema.name) return;
-    if (elements.schedulerConfigurations().length > 0) return;
+    if (elements.schedulerConfigurations(schema).length > 0) return;
     report(accept, SchedulerCodes['scheduler-missing'],
         `The project has periodic schemas but no 'scheduler configuration': ORD would schedule nothing. Add a file with 'scheduler configuration { modules { ... } schemas { ${schema.name}; } }'.`,
         { node: schema, property: 'name' });

@@ -68,11 +68,11 @@ function checkOrdSchemaUse(ref: VariableRef, accept: ValidationAcceptor): void {
 
 function checkOrdSchemaName(test: EqualityTest, names: ProjectNames, accept: ValidationAcceptor): void {
     const literal = ordSchemaTestName(test);
-    if (!literal || names.byName(['Schema']).has(literal.value)) return;
+    if (!literal || names.byName(['Schema'], test).has(literal.value)) return;
     const event = AstUtils.getContainerOfType(test, isModuleEvent);
     const what = event?.ordPort === 1 ? 'whose activation was refused' : 'whose cycle missed its critical delay';
     report(accept, SupervisorCodes['supervisor-ord-schema-unknown'],
-        `No schema is named "${literal.value}": ORD:${event?.ordPort ?? 0} names the schema ${what}, so this test is ${test.operator === '==' ? 'never' : 'always'} true.${nearName(literal.value, names.byName(['Schema']).keys())}`,
+        `No schema is named "${literal.value}": ORD:${event?.ordPort ?? 0} names the schema ${what}, so this test is ${test.operator === '==' ? 'never' : 'always'} true.${nearName(literal.value, names.byName(['Schema'], test).keys())}`,
         { node: literal });
 }
 

@@ -1,5 +1,5 @@
 /** docs/language-reference.md §2: datatypes, function prototypes, values in declarations, test/compute function use. */
-import { AstUtils, GrammarUtils, type AstNode, type ValidationAcceptor, type ValidationChecks } from 'langium';
+import { GrammarUtils, type AstNode, type ValidationAcceptor, type ValidationChecks } from 'langium';
 import {
     isDataType, isFunctionPrototype, isLocalVariable, isParameter, isPort, isVariableRef,
     type FunctionParameter, type LocalVariable, type Parameter, type Port, type SchemaParameter,
@@ -16,7 +16,6 @@ import { TypeCodes } from './codes/types.js';
 import { ProjectNames } from './project-index.js';
 import { report } from './report.js';
 import { checkValue, writtenInt } from './value-checker.js';
-import { otherLocations } from './locations.js';
 import { C_INT_MAX } from '../model/numbers.js';
 
 type Declaration = { $type: string; name: string; type: TypeRef; value?: Value };
@@ -84,9 +83,9 @@ function checkStringEscapes(node: AstNode, property: string, accept: ValidationA
 
 function checkUniqueTopLevel(names: ProjectNames, node: DataType | FunctionPrototype, type: string, word: string, accept: ValidationAcceptor): void {
     if (!node.name) return;
-    const same = names.byName([type]).get(node.name);
+    const same = names.byName([type], node).get(node.name);
     if (same.length <= 1) return;
-    const where = otherLocations(AstUtils.getDocument(node).uri.toString(), same.map((d) => d.documentUri));
+    const where = names.otherLocations(node, same.map((d) => d.documentUri));
     report(accept, TypeCodes['type-duplicate-name'],
         `${word === 'datatype' ? 'Datatype' : 'Function'} '${node.name}' is defined more than once in the project (also in ${where}); ${word} names are unique across the project.`,
         { node, property: 'name' });
@@ -111,10 +110,10 @@ function checkValueSize(decl: Parameter | Port | SchemaParameter | FunctionParam
 /** Datatypes, enumerations and constants share one namespace (Cactal types and values, C file-scope names). */
 function checkUniqueTypeOrConstant(names: ProjectNames, node: DataType | EnumType | Constant, accept: ValidationAcceptor): void {
     if (!node.name) return;
-    const same = names.byName(['DataType', 'EnumType', 'Constant']).get(node.name);
+    const same = names.byName(['DataType', 'EnumType', 'Constant'], node).get(node.name);
     const others = same.filter((d) => d.type !== node.$type);
     if (others.length === 0 && (isDataType(node) || same.length <= 1)) return;
-    const where = otherLocations(AstUtils.getDocument(node).uri.toString(), same.map((d) => d.documentUri));
+    const where = names.otherLocations(node, same.map((d) => d.documentUri));
     const word = (t: string) => t === 'DataType' ? 'datatype' : t === 'EnumType' ? 'enumeration' : 'constant';
     report(accept, TypeCodes['type-duplicate-name'],
         `'${node.name}' is defined more than once in the project (${[...new Set(same.map((d) => word(d.type)))].join(' and ')}; also in ${where}); datatype, enumeration and constant names are unique across the project.`,

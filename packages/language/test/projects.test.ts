@@ -1,0 +1,132 @@
+/**
+ * A workspace of several projects (docs/codegen.md "Where a project is"): names, references and
+ * every project-wide check look at the project of the document only — on real folders
+ * (loadWorkspace: `contract check`, the Node language server) and on an in-memory workspace told
+ * its generated trees (the IDE's language worker).
+ */
+import { cpSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { AstUtils, EmptyFileSystem, URI } from 'langium';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { loadWorkspace, type LoadedWorkspace } from '../src/node/load-workspace.js';
+import { createCactalServices } from '../src/cactal-module.js';
+import { isModule, type Model } from '../src/generated/ast.js';
+import { renameProblem } from '../src/lsp/name-rules.js';
+
+const TUTORIAL = fileURLToPath(new URL('../../../examples/tutorial', import.meta.url));
+
+let root: string;
+beforeAll(() => { root = mkdtempSync(join(tmpdir(), 'cactal-projects-')); });
+afterAll(() => rmSync(root, { recursive: true, force: true }));
+
+/** A folder of `files` (path -> text; a path ending in `/` is an empty folder) under the test's root. */
+function folder(name: string, files: Record<string, string>): string {
+    const dir = join(root, name);
+    for (const [path, text] of Object.entries(files)) {
+        if (path.endsWith('/')) { mkdirSync(join(dir, path), { recursive: true }); continue; }
+        mkdirSync(dirname(join(dir, path)), { recursive: true });
+        writeFileSync(join(dir, path), text);
+    }
+    return dir;
+}
+
+const lines = (ws: LoadedWorkspace) => ws.diagnostics.map((d) => `${d.file}:${d.line} ${d.code} ${d.message}`);
+const tutorialCopy = (dir: string, without: string[] = []) =>
+    cpSync(TUTORIAL, dir, { recursive: true, filter: (src) => !src.includes('/src-gen') && !without.some((w) => src.endsWith(`/${w}`)) });
+
+describe('a folder of several projects', () => {
+    it('two copies of the tutorial (no src-gen/: each first-level folder is a project) are each clean', async () => {
+        const dir = join(root, 'two-tutorials');
+        tutorialCopy(join(dir, 'a'));
+        tutorialCopy(join(dir, 'b'));
+        const ws = await loadWorkspace(dir);
+        expect(ws.layout.roots).toEqual(['a', 'b']);
+        expect(lines(ws)).toEqual([]);
+    });
+
+    it('a project without a scheduler configuration is told so, even when another project has one', async () => {
+        const dir = join(root, 'one-without-scheduler');
+        tutorialCopy(join(dir, 'a'));
+        tutorialCopy(join(dir, 'b'), ['sched.contract']);
+        const ws = await loadWorkspace(dir);
+        const codes = new Set(ws.diagnostics.map((d) => `${d.file.split('/')[0]} ${d.code}`));
+        expect(codes).toContain('b scheduler-missing');
+        expect([...codes].filter((c) => c.startsWith('a '))).toEqual([]);
+    });
+
+    it('duplicates are found within a project, named by their path in it; the same names in another project are no duplicates', async () => {
+        const dir = folder('eclipse-and-other', {
+            'robot/src-gen/': '',
+            'robot/src/types.contract': 'datatype T {int a};\nconst int speed = 1;\n',
+            'robot/lib/types.contract': 'datatype T {int a};\n',
+            'robot/src/more.contract': 'datatype U {int speed};\n',
+            'other/types.contract': 'datatype T {int a};\ndatatype D {int speed};\ndatatype POSE {int x};\n',
+            'other/pose.contract': 'datatype Q {int y};\n',
+            'robot/src/pose.contract': 'datatype Pose {int x};\n'
+        });
+        const ws = await loadWorkspace(dir);
+        expect(ws.layout.roots).toEqual(['other', 'robot']);
+        const found = lines(ws);
+        expect(found.filter((l) => l.startsWith('other/'))).toEqual([]);
+        expect(found).toContain("robot/src/types.contract:1 type-duplicate-name Datatype 'T' is defined more than once in the project (also in lib/types.contract); datatype names are unique across the project.");
+        expect(found).toContain("robot/lib/types.contract:1 type-duplicate-name Datatype 'T' is defined more than once in the project (also in src/types.contract); datatype names are unique across the project.");
+        // a C-name clash (a constant is a macro) within the project only
+        expect(found.some((l) => l.startsWith('robot/src/more.contract:1 identifier-c-reserved'))).toBe(true);
+        // Pose and POSE would share a header's include guard in one project, not in two
+        expect(found.filter((l) => l.includes('identifier-generated-clash'))).toEqual([]);
+    });
+
+    it('modules, schemas and supervisors of one name in two projects: no duplicate; in one project: a duplicate named by its path', async () => {
+        const dir = join(root, 'tutorial-and-copy');
+        tutorialCopy(join(dir, 'a'));
+        tutorialCopy(join(dir, 'b'));
+        mkdirSync(join(dir, 'a/src-gen'));
+        mkdirSync(join(dir, 'a/extra'));
+        cpSync(join(TUTORIAL, 'sschema1.contract'), join(dir, 'a/extra/sschema1.contract'));
+        const ws = await loadWorkspace(dir);
+        const found = lines(ws);
+        expect(found.filter((l) => l.startsWith('b/'))).toEqual([]);
+        expect(found.some((l) => l.startsWith('a/sschema1.contract') && l.includes('schema-name-duplicate') && l.includes('(also in extra/sschema1.contract)'))).toBe(true);
+        expect(found.some((l) => l.startsWith('a/extra/sschema1.contract') && l.includes('(also in sschema1.contract)'))).toBe(true);
+    });
+
+    it('a rename may take a name another project uses', async () => {
+        const dir = join(root, 'rename');
+        tutorialCopy(join(dir, 'a'));
+        tutorialCopy(join(dir, 'b'));
+        writeFileSync(join(dir, 'b/extra.contract'), 'synchronous module QQQ {\n  scheduling { C=1ms; }\n}\n');
+        const ws = await loadWorkspace(dir);
+        const doc = ws.documents.find((d) => d.file === 'a/smodule1.contract')!;
+        const module = doc.model.elements.find(isModule)!;
+        const own = ws.documents.find((d) => d.file === 'a/smodule2.contract')!.model.elements.find(isModule)!.name;
+        const other = ws.documents.find((d) => d.file === 'b/smodule2.contract')!.model.elements.find(isModule)!.name;
+        expect(own).toBe(other);
+        expect(renameProblem(module, own, ws.services.Grammar, ws.services.projects.Projects.indexOf(AstUtils.getDocument(module).uri))).toMatch(/already names a module or supervisor/);
+        expect(renameProblem(module, 'QQQ', ws.services.Grammar, ws.services.projects.Projects.indexOf(AstUtils.getDocument(module).uri))).toBeUndefined();
+    });
+});
+
+describe('a workspace told its generated trees (the IDE language worker)', () => {
+    it('the folders holding a src-gen/ are the projects, their sub-folders part of them', async () => {
+        const { shared, Cactal } = createCactalServices(EmptyFileSystem);
+        const trees = new Set(['file:///workspace/p', 'file:///workspace/q']);
+        Cactal.projects.Projects.configure({ openedFolders: [URI.parse('file:///workspace')], probe: (f) => trees.has(f.toString()) });
+        const files: Record<string, string> = {
+            'p/src/a.contract': 'datatype T {int a};\n',
+            'p/lib/b.contract': 'datatype T {int a};\n',
+            'q/src/a.contract': 'datatype T {int a};\n'
+        };
+        const docs = Object.entries(files).map(([path, text]) => {
+            const doc = shared.workspace.LangiumDocumentFactory.fromString<Model>(text, URI.parse(`file:///workspace/${path}`));
+            shared.workspace.LangiumDocuments.addDocument(doc);
+            return doc;
+        });
+        await shared.workspace.DocumentBuilder.build(docs, { validation: true });
+        const messages = docs.map((d) => (d.diagnostics ?? []).map((x) => x.message));
+        expect(messages[0]).toEqual(["Datatype 'T' is defined more than once in the project (also in lib/b.contract); datatype names are unique across the project."]);
+        expect(messages[1]).toEqual(["Datatype 'T' is defined more than once in the project (also in src/a.contract); datatype names are unique across the project."]);
+        expect(messages[2]).toEqual([]);
+    });
+});
