@@ -62,6 +62,7 @@ async function main(): Promise<void> {
   const files = new FileOperations({ workspace, editors, explorer, lsp });
   workspace.onTree.on((entries) => {
     explorer.setEntries(entries);
+    lsp.setProjectLayout(workspace.projectLayout()); // names and project-wide checks per project
     editors.closeMissing((p) => workspace.hasFile(p) || files.isRenaming(p));
   });
   // the file of the active tab left the workspace (another tab's rename, a delete): said, with the tab now shown

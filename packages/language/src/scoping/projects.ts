@@ -25,10 +25,11 @@ const NO_FOLDER = '';
 export class CactalProjects {
     private opened: URI[] | undefined;
     private probe: FolderTreeProbe;
+    private listed: ((folder: URI) => readonly string[]) | undefined;
     /** Per workspace build: project key by document URI, tree probes by folder, `.contract` files by opened folder. */
     private readonly keys: WorkspaceCache<string, string>;
     private readonly trees: WorkspaceCache<string, boolean>;
-    private readonly files: WorkspaceCache<string, string[]>;
+    private readonly files: WorkspaceCache<string, readonly string[]>;
 
     constructor(private readonly shared: LangiumSharedCoreServices) {
         this.keys = new WorkspaceCache(shared);
@@ -46,12 +47,15 @@ export class CactalProjects {
 
     /**
      * The opened folders (the DIR of `contract check`), instead of the workspace manager's folders;
-     * `probe` says which folders hold a generated tree where the file system cannot (the IDE's
-     * language worker is told by the IDE, which lists the tree).
+     * `probe` says which folders hold a generated tree where the file system cannot, and
+     * `contractFiles` which `.contract` files an opened folder holds (relative to it) when the
+     * workspace's documents may not be all of them yet: the IDE's language worker is told both by
+     * the IDE, which lists the tree, before the files are opened one by one.
      */
-    configure(options: { openedFolders?: URI[]; probe?: FolderTreeProbe }): void {
+    configure(options: { openedFolders?: URI[]; probe?: FolderTreeProbe; contractFiles?: (folder: URI) => readonly string[] }): void {
         if (options.openedFolders) this.opened = options.openedFolders;
         if (options.probe) this.probe = options.probe;
+        if (options.contractFiles) this.listed = options.contractFiles;
         this.keys.clear();
         this.trees.clear();
         this.files.clear();
@@ -130,9 +134,9 @@ export class CactalProjects {
     }
 
     /** The `.contract` documents of an opened folder, relative to it (the rule's rules 2 and 3). */
-    private contractFilesOf(folder: URI): string[] {
+    private contractFilesOf(folder: URI): readonly string[] {
         const base = folder.toString().replace(/\/$/, '');
-        return this.files.get(base, () => this.shared.workspace.LangiumDocuments.all
+        return this.files.get(base, () => this.listed?.(folder) ?? this.shared.workspace.LangiumDocuments.all
             .map((d) => d.uri.toString())
             .filter((u) => u.startsWith(`${base}/`) && u.endsWith('.contract'))
             .map((u) => decodeURIComponent(u.slice(base.length + 1)))

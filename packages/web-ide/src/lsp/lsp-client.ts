@@ -13,6 +13,7 @@ import { CACTAL_LANGUAGE_ID } from '../editor/cactal-language.js';
 import { SCENARIO_LANGUAGE_ID } from '../editor/scenario-language.js';
 import * as conv from './lsp-convert.js';
 import type { ArchSchema } from './architecture-model.js';
+import type { ProjectLayout } from './project-layout.js';
 import LanguageWorker from './language-worker.ts?worker';
 
 /**
@@ -38,6 +39,9 @@ export class LspClient {
   /** Opened documents whose first diagnostics have not arrived yet (= not fully built). */
   private readonly unbuilt = new Set<string>();
   private builtWaiters: Array<() => void> = [];
+  /** The projects' layout last given, and whether the worker has it (sent once the connection is up). */
+  private layout: { json: string; sent: boolean } | undefined;
+  private initialized = false;
 
   constructor() {
     this.ready = new Promise((r) => (this.resolveReady = r));
@@ -80,6 +84,9 @@ export class LspClient {
       },
     } satisfies lsp.InitializeParams);
     this.connection.sendNotification('initialized', {});
+    // before the first document: its project is known when it is first checked
+    this.initialized = true;
+    this.sendLayout();
     this.trackModels();
     this.registerProviders();
     const legend = init.capabilities.semanticTokensProvider?.legend;
@@ -168,6 +175,24 @@ export class LspClient {
 
   documentSymbols(uri: string): Promise<lsp.DocumentSymbol[] | null> {
     return this.request('textDocument/documentSymbol', { textDocument: { uri } });
+  }
+
+  /**
+   * The workspace's projects (the folders holding a src-gen/, the .contract files): the worker
+   * checks names and project-wide rules per project (docs/codegen.md "Where a project is"). Sent
+   * when it changed; the worker then checks every document again.
+   */
+  setProjectLayout(layout: ProjectLayout): void {
+    const json = JSON.stringify(layout);
+    if (this.layout?.json === json) return;
+    this.layout = { json, sent: false };
+    this.sendLayout();
+  }
+
+  private sendLayout(): void {
+    if (!this.layout || this.layout.sent || !this.initialized) return;
+    this.layout.sent = true;
+    void this.connection.sendNotification('cactal/projectLayout', JSON.parse(this.layout.json) as ProjectLayout);
   }
 
   /** Re-validates every document (after files were added or removed). */

@@ -3,6 +3,7 @@ import { api, ApiError, staleDetails, type TreeEntry, type Snapshot } from '../a
 import { Emitter } from '../util/emitter.js';
 import { languageOf, isContract } from './file-kinds.js';
 import { SRC_GEN_DIR, projectRootOf, type ProjectRoot } from '@contract-studio/conventions';
+import { projectLayout, type ProjectLayout } from '../lsp/project-layout.js';
 import { replaceKeepingCursor } from '../editor/replace-keeping-cursor.js';
 import { replaceByDiff } from '../editor/replace-by-diff.js';
 import type { BrowserCopy } from './browser-copies.js';
@@ -137,6 +138,18 @@ export class Workspace {
    * ('' = the workspace root) and the trees of it that are not used.
    */
   projectRootOf(path: string): ProjectRoot {
+    const { dirs, contracts } = this.treeLayout();
+    return projectRootOf(path, (folder) => dirs.has(folder ? `${folder}/${SRC_GEN_DIR}` : SRC_GEN_DIR), contracts);
+  }
+
+  /** The projects' layout as the language worker needs it (src/lsp/project-layout.ts), from the tree as last listed. */
+  projectLayout(): ProjectLayout {
+    const { dirs, contracts } = this.treeLayout();
+    return projectLayout(this.uriOf('').toString().replace(/\/$/, ''), dirs, contracts);
+  }
+
+  /** The folders and `.contract` files of the tree as last listed (computed once per listing). */
+  private treeLayout(): { dirs: Set<string>; contracts: string[] } {
     if (this.layoutOf !== this.entries) {
       const dirs = new Set<string>();
       const walk = (entries: TreeEntry[]): void => {
@@ -151,8 +164,7 @@ export class Workspace {
       this.layout = { dirs, contracts };
       this.layoutOf = this.entries;
     }
-    const { dirs, contracts } = this.layout;
-    return projectRootOf(path, (folder) => dirs.has(folder ? `${folder}/${SRC_GEN_DIR}` : SRC_GEN_DIR), contracts);
+    return this.layout;
   }
 
   private layout: { dirs: Set<string>; contracts: string[] } = { dirs: new Set(), contracts: [] };

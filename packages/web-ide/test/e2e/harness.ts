@@ -26,13 +26,13 @@ export interface Session {
 }
 
 /** A temp copy of the tutorial, the real IDE server on a free port, and a fresh headless Chromium. */
-export async function startSession(opts: { buildService?: boolean; empty?: boolean; example?: string; limits?: Record<string, number> } = {}): Promise<Session> {
+export async function startSession(opts: { buildService?: boolean; empty?: boolean; example?: string; limits?: Record<string, number>; port?: number } = {}): Promise<Session> {
   const base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-e2e-')));
   // named after its example, as `contract serve examples/mobile-robot` names it (the top bar shows it)
   const workspace = join(base, opts.empty ? 'workspace' : basename(opts.example ?? TUTORIAL));
   if (opts.empty) mkdirSync(workspace);
   else cpSync(opts.example ?? TUTORIAL, workspace, { recursive: true, filter: (src) => !/[\/]logs$/.test(src) });
-  const server = await startIdeServer({ workspace, port: 0, buildService: opts.buildService ?? true, ...(opts.limits ? { limits: opts.limits } : {}) });
+  const server = await startIdeServer({ workspace, port: opts.port ?? 0, buildService: opts.buildService ?? true, ...(opts.limits ? { limits: opts.limits } : {}) });
   const userDataDir = join(base, 'chromium-profile');
   mkdirSync(userDataDir);
   mkdirSync(SHOTS, { recursive: true });
