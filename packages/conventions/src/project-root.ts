@@ -43,21 +43,33 @@ const isOwnModel = (f: string): boolean => !f.startsWith('/') && !f.split('/').s
 
 /** The root of the project that `path` (relative to the opened folder) belongs to, by the rule above. */
 export function projectRootOf(path: string, hasTree: TreeProbe, contractFiles: readonly string[]): ProjectRoot {
-    const trees = foldersOf(path).filter((f) => hasTree(f));
-    if (trees.length) return { root: trees[0]!, unusedTrees: trees.slice(1) };
+    return projectRootFinder(contractFiles, hasTree)(path);
+}
+
+/**
+ * `projectRootOf` for many paths of one opened folder: what rules 2 and 3 need of its `.contract`
+ * files is worked out once, so each path costs only the probes of its own folders (the language
+ * asks it for every file of a workspace).
+ */
+export function projectRootFinder(contractFiles: readonly string[], hasTree: TreeProbe): (path: string) => ProjectRoot {
     const models = contractFiles.filter(isOwnModel);
-    if (models.some((f) => !f.includes('/'))) return { root: '', unusedTrees: [] };
-    if (new Set(models.map((f) => f.slice(0, f.indexOf('/')))).size <= 1) return { root: '', unusedTrees: [] };
-    const slash = path.indexOf('/');
-    return { root: slash < 0 ? '' : path.slice(0, slash), unusedTrees: [] };
+    const oneProject = models.some((f) => !f.includes('/')) || new Set(models.map((f) => f.slice(0, f.indexOf('/')))).size <= 1;
+    return (path) => {
+        const trees = foldersOf(path).filter((f) => hasTree(f));
+        if (trees.length) return { root: trees[0]!, unusedTrees: trees.slice(1) };
+        if (oneProject) return { root: '', unusedTrees: [] };
+        const slash = path.indexOf('/');
+        return { root: slash < 0 ? '' : path.slice(0, slash), unusedTrees: [] };
+    };
 }
 
 /** The projects of an opened folder's `.contract` files: their roots (sorted), and every unused tree met on the way to them. */
 export function projectRootsOf(contractFiles: readonly string[], hasTree: TreeProbe): ProjectRoot & { roots: string[] } {
     const roots = new Set<string>();
     const unused = new Set<string>();
+    const rootOf = projectRootFinder(contractFiles, hasTree);
     for (const f of contractFiles.filter(isOwnModel)) {
-        const r = projectRootOf(f, hasTree, contractFiles);
+        const r = rootOf(f);
         roots.add(r.root);
         for (const u of r.unusedTrees) unused.add(u);
     }

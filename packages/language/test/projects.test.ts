@@ -42,8 +42,8 @@ describe('a folder of several projects', () => {
         tutorialCopy(join(dir, 'a'));
         tutorialCopy(join(dir, 'b'));
         const ws = await loadWorkspace(dir);
-        expect(ws.layout.roots).toEqual(['a', 'b']);
         expect(lines(ws)).toEqual([]);
+        expect(ws.layout.roots).toEqual(['a', 'b']);
     });
 
     it('a project without a scheduler configuration is told so, even when another project has one', async () => {
@@ -67,7 +67,6 @@ describe('a folder of several projects', () => {
             'robot/src/pose.contract': 'datatype Pose {int x};\n'
         });
         const ws = await loadWorkspace(dir);
-        expect(ws.layout.roots).toEqual(['other', 'robot']);
         const found = lines(ws);
         expect(found.filter((l) => l.startsWith('other/'))).toEqual([]);
         expect(found).toContain("robot/src/types.contract:1 type-duplicate-name Datatype 'T' is defined more than once in the project (also in lib/types.contract); datatype names are unique across the project.");
@@ -76,6 +75,7 @@ describe('a folder of several projects', () => {
         expect(found.some((l) => l.startsWith('robot/src/more.contract:1 identifier-c-reserved'))).toBe(true);
         // Pose and POSE would share a header's include guard in one project, not in two
         expect(found.filter((l) => l.includes('identifier-generated-clash'))).toEqual([]);
+        expect(ws.layout.roots).toEqual(['other', 'robot']);
     });
 
     it('modules, schemas and supervisors of one name in two projects: no duplicate; in one project: a duplicate named by its path', async () => {

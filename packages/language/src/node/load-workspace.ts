@@ -289,6 +289,8 @@ export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions =
         diagnostics.push(whole(n.path, 'warning', SOURCE_NOT_FILE_CODE, `${n.what}: not read here, and a build (contract build, the IDE's build service) refuses the project for it, nothing built; put the file itself there`));
     }
     diagnostics.sort((a, b) => a.file.localeCompare(b.file) || a.line - b.line || a.column - b.column);
-    const layout = projectRootsOf(documents.map((d) => d.file), (folder) => isTreeFolder(join(root, folder, SRC_GEN_DIR)));
+    const probed = new Map<string, boolean>();
+    const hasTree = (folder: string) => probed.get(folder) ?? probed.set(folder, isTreeFolder(join(root, folder, SRC_GEN_DIR))).get(folder)!;
+    const layout = projectRootsOf(documents.map((d) => d.file), hasTree);
     return { dir: root, documents, diagnostics, services, layout: { roots: layout.roots, unusedTrees: layout.unusedTrees } };
 }

@@ -10,7 +10,7 @@
  * document importing it. Without any opened folder every document is one project.
  */
 import { UriUtils, URI, WorkspaceCache, type IndexManager, type LangiumDocument, type LangiumSharedCoreServices } from 'langium';
-import { SRC_GEN_DIR, projectRootOf } from '@contract-studio/conventions';
+import { SRC_GEN_DIR, projectRootFinder, type ProjectRoot } from '@contract-studio/conventions';
 import { isModel } from '../generated/ast.js';
 
 /** `folder` holds a generated tree (a `src-gen/` folder): the project's root by rule 1. */
@@ -26,15 +26,15 @@ export class CactalProjects {
     private opened: URI[] | undefined;
     private probe: FolderTreeProbe;
     private listed: ((folder: URI) => readonly string[]) | undefined;
-    /** Per workspace build: project key by document URI, tree probes by folder, `.contract` files by opened folder. */
+    /** Per workspace build: project key by document URI, tree probes by folder, the rule by opened folder. */
     private readonly keys: WorkspaceCache<string, string>;
     private readonly trees: WorkspaceCache<string, boolean>;
-    private readonly files: WorkspaceCache<string, readonly string[]>;
+    private readonly finders: WorkspaceCache<string, (path: string) => ProjectRoot>;
 
     constructor(private readonly shared: LangiumSharedCoreServices) {
         this.keys = new WorkspaceCache(shared);
         this.trees = new WorkspaceCache(shared);
-        this.files = new WorkspaceCache(shared);
+        this.finders = new WorkspaceCache(shared);
         const fs = shared.workspace.FileSystemProvider;
         this.probe = (folder) => {
             try {
@@ -58,7 +58,7 @@ export class CactalProjects {
         if (options.contractFiles) this.listed = options.contractFiles;
         this.keys.clear();
         this.trees.clear();
-        this.files.clear();
+        this.finders.clear();
     }
 
     /** The project of the document at `uri`: its root folder's URI as a string ('' when nothing is opened). */
@@ -103,7 +103,7 @@ export class CactalProjects {
             .sort((a, b) => b.toString().length - a.toString().length)[0];
         if (!folder) return this.importerKey(uri, seen) ?? NO_FOLDER;
         const path = decodeURIComponent(text.slice(folder.toString().replace(/\/$/, '').length + 1));
-        const { root } = projectRootOf(path, (f) => this.hasTree(f ? UriUtils.joinPath(folder, f) : folder), this.contractFilesOf(folder));
+        const { root } = this.finderOf(folder)(path);
         return (root ? UriUtils.joinPath(folder, root) : folder).toString().replace(/\/$/, '');
     }
 
@@ -133,13 +133,16 @@ export class CactalProjects {
         return this.trees.get(folder.toString(), () => this.probe(folder));
     }
 
-    /** The `.contract` documents of an opened folder, relative to it (the rule's rules 2 and 3). */
-    private contractFilesOf(folder: URI): readonly string[] {
+    /** The rule for the paths of an opened folder, from its `.contract` files (the given list, else its documents). */
+    private finderOf(folder: URI): (path: string) => ProjectRoot {
         const base = folder.toString().replace(/\/$/, '');
-        return this.files.get(base, () => this.listed?.(folder) ?? this.shared.workspace.LangiumDocuments.all
-            .map((d) => d.uri.toString())
-            .filter((u) => u.startsWith(`${base}/`) && u.endsWith('.contract'))
-            .map((u) => decodeURIComponent(u.slice(base.length + 1)))
-            .toArray());
+        return this.finders.get(base, () => {
+            const files = this.listed?.(folder) ?? this.shared.workspace.LangiumDocuments.all
+                .map((d) => d.uri.toString())
+                .filter((u) => u.startsWith(`${base}/`) && u.endsWith('.contract'))
+                .map((u) => decodeURIComponent(u.slice(base.length + 1)))
+                .toArray();
+            return projectRootFinder(files, (f) => this.hasTree(f ? UriUtils.joinPath(folder, f) : folder));
+        });
     }
 }

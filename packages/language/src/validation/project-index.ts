@@ -8,7 +8,7 @@ import type { CactalServices } from '../cactal-module.js';
 import { otherLocations } from './locations.js';
 
 export class ProjectNames {
-    private readonly cache: WorkspaceCache<string, MultiMap<string, AstNodeDescription>>;
+    private readonly cache: WorkspaceCache<string, Map<string, MultiMap<string, AstNodeDescription>>>;
     private readonly nodeCache: WorkspaceCache<string, AstNode[]>;
 
     constructor(private readonly services: CactalServices) {
@@ -33,17 +33,30 @@ export class ProjectNames {
 
     /** Descriptions of every exported element of the given types in the project of `context`, grouped by name. */
     byName(types: string[], context: AstNode): MultiMap<string, AstNodeDescription> {
+        const tables = this.byProject(types);
         const project = this.projectOf(context);
-        return this.cache.get(`${project}\u0000${types.join('|')}`, () => {
-            const map = new MultiMap<string, AstNodeDescription>();
+        let table = tables.get(project);
+        // kept, empty: the same table for the whole build (identifier-checks.ts keys its caches with it)
+        if (!table) tables.set(project, table = new MultiMap());
+        return table;
+    }
+
+    /** The tables of `types` of every project, made in one pass over the index. */
+    private byProject(types: string[]): Map<string, MultiMap<string, AstNodeDescription>> {
+        return this.cache.get(types.join('|'), () => {
+            const tables = new Map<string, MultiMap<string, AstNodeDescription>>();
             const index = this.services.shared.workspace.IndexManager;
             const projects = this.services.projects.Projects;
             for (const type of types) {
                 for (const d of index.allElements(type)) {
-                    if (d.type === type && projects.keyOf(d.documentUri) === project) map.add(d.name, d);
+                    if (d.type !== type) continue;
+                    const project = projects.keyOf(d.documentUri);
+                    let table = tables.get(project);
+                    if (!table) tables.set(project, table = new MultiMap());
+                    table.add(d.name, d);
                 }
             }
-            return map;
+            return tables;
         });
     }
 
