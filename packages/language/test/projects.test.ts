@@ -1,19 +1,20 @@
 /**
  * A workspace of several projects (docs/codegen.md "Where a project is"): names, references and
  * every project-wide check look at the project of the document only — on real folders
- * (loadWorkspace: `contract check`, the Node language server) and on an in-memory workspace told
+ * (loadWorkspace: `contract check`; the stdio language server) and on an in-memory workspace told
  * its generated trees (the IDE's language worker).
  */
-import { cpSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { cpSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
-import { fileURLToPath } from 'node:url';
+import { fileURLToPath, pathToFileURL } from 'node:url';
 import { AstUtils, EmptyFileSystem, URI } from 'langium';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { loadWorkspace, type LoadedWorkspace } from '../src/node/load-workspace.js';
 import { createCactalServices } from '../src/cactal-module.js';
 import { isModule, type Model } from '../src/generated/ast.js';
 import { renameProblem } from '../src/lsp/name-rules.js';
+import { LSP_TEST_MS, startServer, waitFor } from './lsp-stdio-client.js';
 
 const TUTORIAL = fileURLToPath(new URL('../../../examples/tutorial', import.meta.url));
 
@@ -129,4 +130,31 @@ describe('a workspace told its generated trees (the IDE language worker)', () =>
         expect(messages[1]).toEqual(["Datatype 'T' is defined more than once in the project (also in src/a.contract); datatype names are unique across the project."]);
         expect(messages[2]).toEqual([]);
     });
+});
+
+describe('the language server (stdio) on a workspace folder of several projects (VS Code, Neovim rooted at a repository)', () => {
+    it('publishes each file\'s diagnostics as of its project: folders holding a src-gen/ read from disk', async () => {
+        const dir = join(root, 'server');
+        tutorialCopy(join(dir, 'a'));
+        tutorialCopy(join(dir, 'b'));
+        folder('server', {
+            'b/types2.contract': 'datatype TypeA {float i = 0.0};\n',
+            'group/p/src-gen/': '', 'group/p/x.contract': 'datatype Pose {float x = 0.0};\n',
+            'group/q/src-gen/': '', 'group/q/y.contract': 'datatype Pose {float x = 0.0};\n'
+        });
+        const { client } = await startServer(dir);
+        try {
+            const files = ['a/datatype.contract', 'b/datatype.contract', 'group/p/x.contract'];
+            const uri = (f: string) => pathToFileURL(join(dir, f)).toString();
+            for (const f of files) client.notify('textDocument/didOpen', { textDocument: { uri: uri(f), languageId: 'cactal', version: 1, text: readFileSync(join(dir, f), 'utf8') } });
+            await waitFor(() => files.every((f) => client.latestDiagnostics(uri(f)) !== undefined));
+            expect(client.latestDiagnostics(uri('a/datatype.contract'))).toEqual([]);
+            expect(client.latestDiagnostics(uri('group/p/x.contract'))).toEqual([]);
+            expect(client.latestDiagnostics(uri('b/datatype.contract'))!.map((d) => d.message)).toEqual([
+                "Datatype 'TypeA' is defined more than once in the project (also in types2.contract); datatype names are unique across the project."
+            ]);
+        } finally {
+            await client.stop();
+        }
+    }, LSP_TEST_MS);
 });
