@@ -132,6 +132,25 @@ describe('a workspace told its generated trees (the IDE language worker)', () =>
     });
 });
 
+describe('a file added or removed that changes the projects', () => {
+    it('checks the files that moved to another project again (a language server told of the change)', async () => {
+        const dir = folder('layout-change', { 'a/x.contract': 'datatype T {int a};\n', 'b/y.contract': 'datatype T {int a};\n' });
+        const ws = await loadWorkspace(dir);
+        const builder = ws.services.shared.workspace.DocumentBuilder;
+        const [a, b] = ws.documents.map((d) => d.document);
+        // a/ and b/: two projects (rule 3)
+        expect([a, b].map((d) => (d!.diagnostics ?? []).length)).toEqual([0, 0]);
+        // a .contract file in the opened folder itself: one project (rule 2), T defined twice in it
+        writeFileSync(join(dir, 'top.contract'), 'function void f(int x);\n'); // no fact of project-facts.ts: revalidates nothing by itself
+        await builder.update([URI.file(join(dir, 'top.contract'))], []);
+        expect(a!.diagnostics!.map((d) => d.message)).toEqual(["Datatype 'T' is defined more than once in the project (also in b/y.contract); datatype names are unique across the project."]);
+        expect(b!.diagnostics!.map((d) => d.message)).toEqual(["Datatype 'T' is defined more than once in the project (also in a/x.contract); datatype names are unique across the project."]);
+        rmSync(join(dir, 'top.contract'));
+        await builder.update([], [URI.file(join(dir, 'top.contract'))]);
+        expect([a, b].map((d) => (d!.diagnostics ?? []).length)).toEqual([0, 0]);
+    });
+});
+
 describe('the language server (stdio) on a workspace folder of several projects (VS Code, Neovim rooted at a repository)', () => {
     it('publishes each file\'s diagnostics as of its project: folders holding a src-gen/ read from disk', async () => {
         const dir = join(root, 'server');

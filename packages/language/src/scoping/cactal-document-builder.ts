@@ -8,7 +8,8 @@
  * Langium relinks and revalidates a document only when a file it refers to changes; this builder
  * also revalidates the importers of a changed file, the files that export a name a changed file
  * exported before or exports now, and the files whose project-wide diagnostics depend on a fact a
- * changed file contributed before or contributes now.
+ * changed file contributed before or contributes now; and every file when a file added or removed
+ * moved a file into another project (scoping/projects.ts).
  */
 import {
     Cancellation, DefaultDocumentBuilder, DocumentState, URI, UriUtils,
@@ -16,6 +17,7 @@ import {
 } from 'langium';
 import { isModel } from '../generated/ast.js';
 import { documentFacts, factsOf, projectDependents, type DocumentFacts } from './project-facts.js';
+import type { CactalServices } from '../cactal-module.js';
 
 export class CactalDocumentBuilder extends DefaultDocumentBuilder {
     /** Top-level names exported by the changed and deleted files before the current update. */
@@ -29,6 +31,10 @@ export class CactalDocumentBuilder extends DefaultDocumentBuilder {
     override async update(changed: URI[], deleted: URI[], cancelToken = Cancellation.CancellationToken.None): Promise<void> {
         const touchedUris = [...changed, ...deleted].map((u) => u.toString());
         const before = this.documentsAt(touchedUris);
+        // a file added or removed may change which project the others are in (projects.ts: a second
+        // first-level folder with .contract files splits the opened folder into projects)
+        const layoutMayChange = deleted.length > 0 || changed.some((u) => !this.langiumDocuments.hasDocument(u));
+        const projectsBefore = layoutMayChange ? this.projectKeys() : undefined;
         for (const [uri, doc] of before) if (!this.pendingFacts.has(uri)) this.pendingFacts.set(uri, documentFacts(doc));
         this.namesBeforeUpdate = this.exportedNames(new Set(before.keys()));
         await super.update(changed, deleted, cancelToken);
@@ -41,7 +47,9 @@ export class CactalDocumentBuilder extends DefaultDocumentBuilder {
         const settled = (doc: LangiumDocument) => !touched.has(doc.uri.toString()) && doc.state === DocumentState.Validated;
         // names the changed files export now: files that export them too must show (or drop) the duplicate
         const namesNow = this.exportedNames(touched);
-        const relink = all.filter((doc) => settled(doc) && this.exportsAny(doc, namesNow));
+        const projectsNow = projectsBefore && this.projectKeys();
+        const moved = projectsNow !== undefined && [...projectsNow].some(([uri, key]) => projectsBefore!.has(uri) && projectsBefore!.get(uri) !== key);
+        const relink = all.filter((doc) => settled(doc) && (moved || this.exportsAny(doc, namesNow)));
         // files whose project-wide diagnostics depend on a fact the changed files contribute: validation only
         const revalidate = [...projectDependents(factsBefore, factsOf(after), all)].filter((doc) => settled(doc) && !relink.includes(doc));
         for (const doc of relink) this.resetToState(doc, DocumentState.ComputedScopes);
@@ -84,6 +92,17 @@ export class CactalDocumentBuilder extends DefaultDocumentBuilder {
             if (found.has(uri) || folders.some((f) => uri.startsWith(f))) found.set(uri, doc);
         }
         return found;
+    }
+
+    /** The project of every document (projects.ts), by URI string. */
+    private projectKeys(): Map<string, string> {
+        const keys = new Map<string, string>();
+        for (const doc of this.langiumDocuments.all) {
+            if (!this.serviceRegistry.hasServices(doc.uri)) continue;
+            const services = this.serviceRegistry.getServices(doc.uri) as Partial<CactalServices>;
+            if (services.projects) keys.set(doc.uri.toString(), services.projects.Projects.keyOf(doc.uri));
+        }
+        return keys;
     }
 
     private exportedNames(uris: Set<string>): Set<string> {
