@@ -11,7 +11,7 @@ import type { FinishedRename, GenerationProblem, GenerationReport } from '@contr
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { formatText, summarize } from '../diagnostic-format.js';
-import { ORPHANS_HOLD, SRC_GEN_DIR, projectRootsOf, unusedTreeWarning } from '@contract-studio/conventions';
+import { ORPHANS_HOLD, SRC_GEN_DIR, unusedTreeWarning } from '@contract-studio/conventions';
 import { safeName } from '../terminal-text.js';
 import { MENTIONED_KINDS, printRegionMentions } from '../region-mentions-text.js';
 import { holdTreeLock } from '../tree-lock-hold.js';
