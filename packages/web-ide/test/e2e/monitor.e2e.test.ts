@@ -527,7 +527,10 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(() => page.locator('.monitor-fn[data-function="SUP.constructor"]').textContent()).toMatch(/^constructor\(\) \(not in the model\) — running since/);
     expect(await rule(page, 'SUP.constructor.__proto__').getAttribute('data-active')).toBe('true');
     expect(await rule(page, 'SUP.action.toString').getAttribute('data-active')).toBe('true');
-    expect(await page.locator('.monitor-schema').allTextContents()).toEqual(['● __proto__ (periodic) ← SUP.constructor.__proto__']);
+    // ORD's log ends with no exit record: its schema `__proto__` is shown ended at ORD's last record, with the mark that says so
+    expect(await page.locator('.monitor-schema').allTextContents()).toEqual([]);
+    expect(await page.evaluate(() => ((window as any).__ide.monitor.current.marks as { kind: string; where: string; label: string }[])
+      .filter((m) => m.kind === 'schema' && m.label.startsWith('ORD gone')).map((m) => m.where))).toEqual(['__proto__']);
     expect(await page.evaluate(() => ({} as any).by ?? null)).toBeNull();
     const longRule = rule(page, 'SUP.action.OBSTACLE_AVOIDANCE_RECOVERY').locator('.rule-name');
     expect(await longRule.evaluate((e) => e.scrollWidth <= e.clientWidth)).toBe(true);
