@@ -8,6 +8,7 @@
  */
 import { ownString } from './parse.js';
 import type { KnownRecord } from './records.js';
+import { receiverGone } from './receiver-gone.js';
 
 /** The end of a runtime error record written while the launcher stopped the run. */
 export const RUN_STOPPING = '; the run is stopping)';
@@ -15,8 +16,6 @@ export const RUN_STOPPING = '; the run is stopping)';
 /** Modules followed, at most (a forged log's names past them are not followed), as the story's STORY_FOLLOWED. */
 const FOLLOWED = 4096;
 
-/** `STOP request to ORD: not sent, it has ended (...)`, `UNSUBSCRIBE request to SRT: unknown module (...)`: the receiver. */
-const GONE_RECEIVER = /^[A-Z_]+ request to ([A-Za-z0-9_.-]+): (?:not sent, it has ended|unknown module)/;
 
 export class EndedMidRun {
     /** Each module's last record's time (monotonic ns), while it wrote no exit or crash record. */
@@ -44,7 +43,9 @@ export class EndedMidRun {
      */
     textFor(k: KnownRecord, offsetText: (ns: bigint) => string): string | undefined {
         if (k.kind !== 'error') return undefined;
-        const receiver = GONE_RECEIVER.exec(k.detail)?.[1];
+        // `STOP request to ORD: not sent, it has ended (...)`, `UNSUBSCRIBE request to SRT: unknown module (...)`
+        const gone = receiverGone(k.detail);
+        const receiver = gone && gone.way !== 'not running' ? gone.module : undefined;
         if (receiver === undefined || receiver === k.module || this.ended.has(receiver) || this.told.has(receiver)) return undefined;
         const last = this.last.get(receiver);
         if (last === undefined || last >= BigInt(k.monoNs)) return undefined;

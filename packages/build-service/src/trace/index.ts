@@ -22,3 +22,4 @@ export { isRule, isUnknown, countRecord, type RecordCounts, type TraceRecord, ty
 export { encodeTraceRecords, decodeTraceRecords, forEachTraceRecord, forEachTraceLine, TraceWireError, type TraceWire, type TraceLine } from './wire.js';
 export { LogClock, LogClocks, monoBeyondInt64, monoTextProblem, wallTimeMs, posingAs, posingText, ORD_MODULE, BACK_TOLERANCE_NS, JUMP_CHECKED_NS, WALL_TOLERANCE_NS } from './log-clock.js';
 export { UndosToOrd, type UnservedUndos } from './undos-to-ord.js';
+export { receiverGone, type ReceiverGoneWay } from './receiver-gone.js';

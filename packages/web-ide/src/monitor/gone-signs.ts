@@ -7,7 +7,7 @@
  * release #1484 after 200 periods: it is no longer running (it crashed or was killed)`: the
  * check `contract trace` makes, stuckSaysGone).
  */
-import { stuckSaysGone, type KnownRecord } from '@contract-studio/build-service/trace';
+import { receiverGone, stuckSaysGone, type KnownRecord } from '@contract-studio/build-service/trace';
 
 export interface GoneSign {
   /** The module the record says is gone. */
@@ -16,8 +16,8 @@ export interface GoneSign {
   words: string;
 }
 
-/** `<REQUEST> request to M: module not running ...` / `... request to M: not sent, it has ended ...` (the runtime's words, core.c and sup_main.c). */
-const REQUEST_FOUND_GONE = /^[A-Z_]+ request to ([A-Za-z_][A-Za-z0-9_]{0,63}): (?:module not running|not sent, it has ended)/;
+/** A module's name, as the runtime gives it (a gone receiver's name in another shape is not taken). */
+const MODULE_NAME = /^[A-Za-z_][A-Za-z0-9_]{0,63}$/;
 
 /** Longest record text a sign keeps (a forged line can be 4 KiB). */
 const MAX_WORDS = 200;
@@ -25,7 +25,11 @@ const MAX_WORDS = 200;
 /** The module record `k` says is gone, or undefined. */
 export function goneModuleSign(k: KnownRecord): GoneSign | undefined {
   let module: string | undefined;
-  if (k.kind === 'error') module = REQUEST_FOUND_GONE.exec(k.detail)?.[1];
+  if (k.kind === 'error') {
+    // `<REQUEST> request to M: module not running ...` / `... request to M: not sent, it has ended ...`
+    const gone = receiverGone(k.detail);
+    if (gone && gone.way !== 'unknown' && MODULE_NAME.test(gone.module)) module = gone.module;
+  }
   else if (k.kind === 'scheduler' && k.fields?.['what'] === 'stuck' && stuckSaysGone(k.detail) && typeof k.fields['module'] === 'string') module = k.fields['module'];
   if (!module || module === k.module) return undefined;
   return { module, words: `${k.module}: ${k.detail}`.slice(0, MAX_WORDS) };
