@@ -102,6 +102,36 @@ synchronous module MXX { scheduling { C=1ms; } data flows { out :0 int a; out :0
         }
     });
 
+    it("replaces a misspelt keyword by the one the syntax error suggests, and the file then checks clean", async () => {
+        const good = ARCHITECTURE['msa.contract']!;
+        expect(good).toContain('synchronous module');
+        const ws = await build({ ...ARCHITECTURE, 'msa.contract': good.replace('synchronous module', 'synchronus module') });
+        const doc = ws.docs.get('msa.contract')!;
+        const syntax = (doc.diagnostics ?? []).filter((d) => (d.data as { code?: string } | undefined)?.code === 'parsing-error');
+        expect(syntax.map((d) => d.message).join('\n')).toContain("Did you mean 'synchronous'");
+        const actions = (await ws.services.lsp.CodeActionProvider!.getCodeActions(doc, {
+            textDocument: { uri: doc.uri.toString() }, range: syntax[0]!.range, context: { diagnostics: syntax }
+        })) as CodeAction[];
+        const fix = actions.find((a) => a.title === "Replace 'synchronus' with 'synchronous'");
+        expect(fix, actions.map((a) => a.title).join(', ')).toBeDefined();
+        const fixed = apply(ws, fix!.edit!)['msa.contract']!;
+        expect(fixed).toBe(good);
+        const again = await build({ ...ARCHITECTURE, 'msa.contract': fixed });
+        expect(again.diagnostics.filter((d) => d.file === 'msa.contract' && d.severity === 1)).toEqual([]);
+    });
+
+    it('offers no keyword fix when the squiggled text is not a near miss of the suggested keyword', async () => {
+        const ws = await build({ ...ARCHITECTURE, 'msa.contract': ARCHITECTURE['msa.contract']!.replace('synchronous module', 'synchronus module') });
+        const doc = ws.docs.get('msa.contract')!;
+        const syntax = (doc.diagnostics ?? []).filter((d) => (d.data as { code?: string } | undefined)?.code === 'parsing-error');
+        // the same message on a range holding another word: no edit is offered
+        const moved = syntax.map((d) => ({ ...d, range: { start: { line: 0, character: 0 }, end: { line: 0, character: 6 } } }));
+        const actions = await ws.services.lsp.CodeActionProvider!.getCodeActions(doc, {
+            textDocument: { uri: doc.uri.toString() }, range: moved[0]!.range, context: { diagnostics: moved }
+        });
+        expect(actions).toEqual([]);
+    });
+
     it('offers nothing for diagnostics without a fix', async () => {
         const ws = await build({ 'a.contract': 'import "nosuch.contract";\ndatatype T {int a};' });
         const doc = ws.docs.get('a.contract')!;

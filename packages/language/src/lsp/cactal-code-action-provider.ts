@@ -7,7 +7,9 @@
  * - `supervisor-action-separator` (data.insertAt, the end of the action before): insert the missing ';';
  * - `supervisor-elapsed-once` (data.suggestion): `elapsed=t` -> `duration(R)=t`;
  * - `identifier-c-reserved`, `identifier-generated-clash` (data.suggestion): rename the element everywhere to a name the
- *   generated C does not take (the suggestion, or the next free `<name>_N` if the rename rules refuse it).
+ *   generated C does not take (the suggestion, or the next free `<name>_N` if the rename rules refuse it);
+ * - a syntax error saying `Did you mean 'synchronous'?` on a misspelt keyword (the squiggled word is a near miss of it):
+ *   replace the word by the keyword.
  */
 import { CstUtils, type AstNode, type Grammar, type LangiumDocument, type LangiumDocuments, type References } from 'langium';
 import type { CactalProjects } from '../scoping/projects.js';
@@ -18,6 +20,7 @@ import type { CactalServices } from '../cactal-module.js';
 import { suggestName } from '../validation/c-names/reserved-names.js';
 import { renameProblem } from './name-rules.js';
 import { renameEdits } from './rename-edits.js';
+import { keywordTypoFix } from './keyword-typo-fix.js';
 
 type DiagnosticData = { code?: string; importPath?: string; suggestion?: string; suggestedIndex?: number; insertAt?: { line?: unknown; character?: unknown } };
 
@@ -66,6 +69,9 @@ export class CactalCodeActionProvider implements CodeActionProvider {
                     isPreferred: true,
                     edit: { changes: { [document.textDocument.uri]: [{ range: diagnostic.range, newText: data.suggestion }] } }
                 });
+            } else if (code === 'parsing-error') {
+                const action = keywordTypoFix(document, diagnostic);
+                if (action) actions.push(action);
             } else if (code === 'supervisor-action-separator' && Number.isInteger(data.insertAt?.line) && Number.isInteger(data.insertAt?.character)) {
                 const at = { line: data.insertAt!.line as number, character: data.insertAt!.character as number };
                 actions.push({
