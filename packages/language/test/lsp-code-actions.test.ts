@@ -117,7 +117,7 @@ synchronous module MXX { scheduling { C=1ms; } data flows { out :0 int a; out :0
         const fixed = apply(ws, fix!.edit!)['msa.contract']!;
         expect(fixed).toBe(good);
         const again = await build({ ...ARCHITECTURE, 'msa.contract': fixed });
-        expect(again.diagnostics.filter((d) => d.file === 'msa.contract' && d.severity === 1)).toEqual([]);
+        expect(again.diagnostics.filter((d) => d.file === 'msa.contract' && d.severity === 'error')).toEqual([]);
     });
 
     it('offers no keyword fix when the squiggled text is not a near miss of the suggested keyword', async () => {

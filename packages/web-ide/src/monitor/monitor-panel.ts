@@ -22,9 +22,9 @@ import type { MonitorState } from './monitor-state.js';
 import { activeSchemas, lastActivated, type SchemaInfo } from './active-schemas.js';
 import { MarksStrip, markTooltip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
-import { priorityText, unheardEventText } from '@contract-studio/build-service/trace';
+import { unheardEventText } from '@contract-studio/build-service/trace';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
-import { NOT_IN_MODEL, crashedModulesText, flowDropText, flowWaitText, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, ruleTexts, quietDataFlowRow, timeReadout, unheardEventsRow } from './panel-text.js';
+import { NOT_IN_MODEL, crashedModulesText, notReleasedText, schedulingText, flowDropText, flowWaitText, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, ruleTexts, quietDataFlowRow, timeReadout, unheardEventsRow } from './panel-text.js';
 import { visibleText } from '@contract-studio/conventions';
 import { shortAtWord } from '../util/short-text.js';
 
@@ -60,7 +60,7 @@ const CLOCK_REDRAW_MS = 100;
 const CLOCK_TICK_MS = 250;
 
 /** What a periodic schema's block shows, to draw it again only when one of them moved (releases -1: not released yet). */
-interface DrawnCounts { releases: number; completions: number; misses?: number; overruns?: number; cd?: number; period?: number }
+interface DrawnCounts { releases: number; completions: number; misses?: number; overruns?: number; cd?: number; period?: number; live: boolean; empty: boolean }
 
 export class MonitorPanel {
   readonly element: HTMLElement;
@@ -457,7 +457,7 @@ export class MonitorPanel {
     });
     if (!items.length) items.push(this.row('schema:none', () => h('div', { class: 'muted' }, 'none')));
     replaceIfChanged(this.schemasEl, items);
-    setText(this.schedEl, s.ordPriority ? `ORD ${priorityText(visibleText(s.ordPriority))}` : '');
+    setText(this.schedEl, s.ordPriority ? schedulingText(visibleText(s.ordPriority)) : '');
     if (this.schedEl.hidden !== !s.ordPriority) this.schedEl.hidden = !s.ordPriority;
     const periodic = [...new Set([...this.catalogue.filter((c) => c.kind === 'periodic').map((c) => c.name), ...s.periodic.keys()])];
     const blocks = periodic.map((name) => {
@@ -480,14 +480,16 @@ export class MonitorPanel {
       // every cycle would otherwise rebuild this block every frame)
       // (compared field by field: a key string built at every frame was a good part of the page's garbage)
       const was = hist.counts;
-      const urgent = !was || was.misses !== p?.deadlineMisses || was.overruns !== p?.overruns || was.cd !== cd || was.period !== period;
+      // (a run that ends, or has no records at all, says so in a block never released)
+      const empty = m.recordCount === 0;
+      const urgent = !was || was.misses !== p?.deadlineMisses || was.overruns !== p?.overruns || was.cd !== cd || was.period !== period || was.live !== this.live || was.empty !== empty;
       const changed = urgent || (p ? was.releases !== p.releases || was.completions !== p.completions : was.releases !== -1);
       if (changed && this.due(`hist:${name}`, urgent ? URGENT_REDRAW_MS : COUNTS_REDRAW_MS)) {
-        hist.counts = { releases: p?.releases ?? -1, completions: p?.completions ?? -1, misses: p?.deadlineMisses, overruns: p?.overruns, cd, period };
+        hist.counts = { releases: p?.releases ?? -1, completions: p?.completions ?? -1, misses: p?.deadlineMisses, overruns: p?.overruns, cd, period, live: this.live, empty };
         setText(hist.title, `${name} · PERIOD ${def?.period ?? '?'} · CRITICAL_DELAY ${def?.criticalDelay ?? '?'}`);
         setText(hist.text, p
           ? `${p.releases} module release(s) · last cycle ${p.lastCycle} · ${p.completions} cycle(s) complete · ${p.completions ? `response last ${fmtNs(p.lastResponseNs)}, mean ${fmtNs(p.sumResponseNs / p.completions)}, max ${fmtNs(p.maxResponseNs)}` : 'no response time yet'} · ${p.deadlineMisses} deadline miss(es) · ${p.overruns} overrun(s)${p.overrunning ? ' (its last cycle overran: ORD tells how many releases it skipped only when it ends)' : ''}${p.missedTicks ? ` · ${p.missedTicks} missed tick(s)` : ''}${releaseLatenessText(p)}`
-          : 'not released yet');
+          : notReleasedText(this.live, empty));
         setAttr(hist.root, 'data-releases', String(p?.releases ?? 0));
         setAttr(hist.root, 'data-misses', String(p?.deadlineMisses ?? 0));
         setAttr(hist.root, 'data-overruns', String(p?.overruns ?? 0));

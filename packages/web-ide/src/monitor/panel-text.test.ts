@@ -1,6 +1,6 @@
 import { describe, it, expect } from 'vitest';
 import { parseRecordLine } from '@contract-studio/build-service/trace';
-import { NOT_IN_MODEL_LONG, flowDropText, followButton, ruleTexts, timeReadout } from './panel-text.js';
+import { NOT_IN_MODEL_LONG, flowDropText, followButton, notReleasedText, ruleTexts, schedulingText, timeReadout } from './panel-text.js';
 import { MonitorModel } from './monitor-model.js';
 import { histogramMarkers } from './response-histogram.js';
 import { markTooltip } from './marks-strip.js';
@@ -147,5 +147,22 @@ describe("a data flow's dropped values", () => {
     expect(flowDropText('CAM:0->NAV:2', flows.get('CAM:0->NAV:2')!)).toBe(' · 1 dropped (Connection refused)');
     expect(flows.get('CAM:0->NAV:2')).toMatchObject({ count: 0, last: 3_000_000 });
     expect(flowDropText('CAM:0->LOG:1', flows.get('CAM:0->LOG:1')!)).toBe('');
+  });
+});
+
+describe('the scheduling line', () => {
+  it('names how ORD was scheduled, and under nice levels says that misses are likely and what runs it real-time', () => {
+    expect(schedulingText('SCHED_FIFO 90')).toBe('Scheduling: ORD priority SCHED_FIFO 90 (real-time)');
+    const nice = schedulingText('nice 1 (priority 90)');
+    expect(nice).toMatch(/^Scheduling: ORD priority nice 1 \(priority 90\): not real-time, a nice level \(deadline misses are likely on a busy machine; /);
+    expect(nice).toContain("the run settings' Real-time");
+  });
+});
+
+describe('a periodic schema never released', () => {
+  it('is "not released yet" while the run goes on, "never released" after it, and a run with no records did not start', () => {
+    expect(notReleasedText(true, true)).toBe('not released yet');
+    expect(notReleasedText(false, false)).toBe('never released in this run');
+    expect(notReleasedText(false, true)).toMatch(/^no release: the run has no records \(it did not start/);
   });
 });

@@ -3,7 +3,7 @@
  * readout, the follow button, a rule's row (its cause, accessible name and tooltip). Kept apart so that they are tested
  * without a page (panel-text.test.ts).
  */
-import { durationText, readableCause } from '@contract-studio/build-service/trace';
+import { durationText, priorityText, readableCause } from '@contract-studio/build-service/trace';
 import { MAX_NAMES, quantileBoundNs, type FlowCount, type KeptRequests, type ModuleState, type PeriodicState, type RuleState } from './monitor-state.js';
 
 /** `+2.010325 s`: a time of the run (ns since its first record). */
@@ -161,4 +161,23 @@ export function releaseLatenessText(p: Pick<PeriodicState, 'lateHistogram' | 'la
   if (!p.lateCycles || !(p.maxLateNs > 0)) return '';
   const q = (x: number) => durationText(quantileBoundNs(p.lateHistogram, p.lateCycles, x, p.maxLateNs));
   return ` · release lateness p50 ≤ ${q(0.5)}, p99 ≤ ${q(0.99)}, max ${durationText(p.maxLateNs)}`;
+}
+
+/**
+ * The line above the active schemas saying how ORD was scheduled (its `priority` record): under nice
+ * levels, deadline misses on a busy machine are expected, and the run settings' Real-time is the cure.
+ */
+export function schedulingText(detail: string): string {
+  const how = `Scheduling: ORD ${priorityText(detail)}`;
+  return detail.startsWith('nice') ? `${how} (deadline misses are likely on a busy machine; the run settings' Real-time runs the modules at their SCHED_FIFO priorities)` : how;
+}
+
+/**
+ * A periodic schema's block with no release: while a run goes on, not yet; once it has ended, never
+ * (its schema was not activated); a run with no record at all did not start (a Build & Run whose
+ * build failed): the run's label says why.
+ */
+export function notReleasedText(live: boolean, noRecords: boolean): string {
+  if (live) return 'not released yet';
+  return noRecords ? 'no release: the run has no records (it did not start: its label above says why)' : 'never released in this run';
 }
