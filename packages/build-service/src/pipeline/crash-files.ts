@@ -12,9 +12,11 @@
  * run without a shell, with hex offsets only, bounded in time and output.
  */
 import { execFile } from 'node:child_process';
-import { constants, promises as fsp } from 'node:fs';
-import { join } from 'node:path';
-import { addr2lineArgs, CrashReports, MAX_ADDR2LINE_CHARS, parseAddr2line, type CrashPlace, type CrashReport } from './crash-reports.js';
+import { constants, lstatSync, promises as fsp } from 'node:fs';
+import { isAbsolute, join, relative, resolve } from 'node:path';
+import { SRC_GEN_ARCHITECTURE_DIR } from '@contract-studio/conventions';
+import { crashFrameTexts, placeAsTold, type PlaceWhere } from './crash-frames.js';
+import { addr2lineArgs, CrashReports, MAX_ADDR2LINE_CHARS, parseAddr2line, type CrashReport } from './crash-reports.js';
 
 /** A crash file's bytes, at most (the runtime's block: 51 lines of 160 characters at most). */
 export const MAX_CRASH_FILE_BYTES = 32 * 1024;
@@ -129,27 +131,18 @@ export function executableBesideLogs(logDir: string, module: string): string {
 }
 
 /**
- * What a report says: its head, then each frame mapped (`#0 est_update at /…/module.c:248`, a
- * frame in inlined code as one line: `#1 _exec at /…/module.c:132 (inlined into ModuleMain at
- * /…/module.c:133)`) when `places` are given, else its raw offsets and the addr2line command that
- * maps them (`why`: why they are not mapped). `executable`: the one that crashed (its build-id the
- * report's), named in that command; null when none was found, the command then naming where the
- * build puts it (`ARCH/modules/M_mod/M`), never a path that is not that executable.
+ * What a report says: its head, then each frame (crash-frames.ts, the form `contract run --verbose`
+ * prints too) mapped (`#0 est_update at FILE:248`, a frame in inlined code as one line: `#1 _exec
+ * at FILE:132 (inlined into ModuleMain at FILE:133)`) when `places` are given, else its raw offsets
+ * and the addr2line command that maps them (`why`: why they are not mapped). `executable`: the one
+ * that crashed (its build-id the report's), named in that command; null when none was found, the
+ * command then naming where the build puts it (`ARCH/modules/M_mod/M`), never a path that is not
+ * that executable. `where`: how a place's file is shown (placesBesideLogs).
  */
-export function crashSiteLines(report: CrashReport, executable: string | null, places: ReturnType<typeof parseAddr2line> | null, why: string): string[] {
+export function crashSiteLines(report: CrashReport, executable: string | null, places: ReturnType<typeof parseAddr2line> | null, why: string, where: PlaceWhere = placeAsTold): string[] {
   const addr = report.signal === 11 || report.signal === 7 ? ` at address 0x${report.address}` : '';
   const lines = [`${report.module} crashed: signal ${report.signal} (${report.signalName})${addr}${report.buildId ? `, executable build-id ${report.buildId}` : ''}`];
-  let exeIndex = 0;
-  report.frames.forEach((f, i) => {
-    const at = f.object === 'exe' && places ? places[exeIndex] ?? [] : [];
-    if (f.object === 'exe') exeIndex++;
-    if (!at.length) lines.push(`  #${i} ${f.object === 'exe' ? 'the executable' : f.object}+0x${f.offset.toString(16)}`);
-    else {
-      // addr2line -i: the innermost place first, then each function it is inlined into, at the call
-      const into = at.slice(1).map(placeText);
-      lines.push(`  #${i} ${placeText(at[0]!)}${into.length ? ` (inlined into ${into.join(', inlined into ')})` : ''}`);
-    }
-  });
+  lines.push(...crashFrameTexts(report, places, where).map((t) => `  ${t}`));
   if (!places) {
     const exe = executable ?? `ARCH/modules/${report.module}_mod/${report.module}`;
     const argv = addr2lineArgs(report, exe);
@@ -164,9 +157,44 @@ export function crashSiteLines(report: CrashReport, executable: string | null, p
   return lines;
 }
 
-/** `fn at file:line`, as addr2line tells a place. */
-function placeText(p: CrashPlace): string {
-  return `${p.function} at ${p.file ?? '?'}:${p.line ?? '?'}`;
+/**
+ * How the places of an executable beside `logDir` are shown, as `contract run` shows them: when the
+ * logs folder is the generated architecture's own (`PROJECT/src-gen/generated/architecture/logs`,
+ * `make run`'s default), a file of the project as the project names it
+ * (`src-gen/generated/architecture/modules/M_mod/module.c:248`); a file of the runtime it was built
+ * with (`RUNTIME/src/F`, where RUNTIME holds `include/libmodule/libmodule.h`, as the generated
+ * Makefile's CONTRACT_RUNTIME must) as `runtime/src/F`; any other (or a relative path) as addr2line
+ * tells it.
+ */
+export function placesBesideLogs(logDir: string): PlaceWhere {
+  const arch = resolve(logDir, '..');
+  const suffix = `/${SRC_GEN_ARCHITECTURE_DIR}`;
+  const project = arch.endsWith(suffix) ? arch.slice(0, -suffix.length) || '/' : null;
+  const runtimes = new Map<string, boolean>();
+  const isRuntime = (dir: string): boolean => {
+    let known = runtimes.get(dir);
+    if (known === undefined) runtimes.set(dir, (known = runtimes.size < 16 && isRegularFile(join(dir, RUNTIME_HEADER))));
+    return known;
+  };
+  return (p) => {
+    if (!isAbsolute(p.file)) return placeAsTold(p);
+    const rel = project === null ? '' : relative(project, p.file);
+    if (rel && !rel.startsWith('..') && !isAbsolute(rel)) return `${rel}:${p.line ?? '?'}`;
+    const inRuntime = RUNTIME_SOURCE.exec(p.file);
+    return inRuntime && isRuntime(inRuntime[1]!) ? `runtime/${inRuntime[2]}:${p.line ?? '?'}` : placeAsTold(p);
+  };
+}
+
+/** The runtime's header, which the generated Makefile checks its CONTRACT_RUNTIME by. */
+const RUNTIME_HEADER = 'include/libmodule/libmodule.h';
+const RUNTIME_SOURCE = /^(\/.{0,4000}?)\/((?:src|include|launcher)\/[^/]{1,255})$/;
+
+function isRegularFile(path: string): boolean {
+  try {
+    return lstatSync(path).isFile();
+  } catch {
+    return false;
+  }
 }
 
 /**
@@ -201,7 +229,7 @@ export async function readCrashFiles(logDir: string, problems: string[] = []): P
       places = out === null ? null : parseAddr2line(out);
       why = argv.length ? 'addr2line failed' : 'no frame in the executable';
     }
-    sites.push({ module, report, lines: crashSiteLines(report, crashed, places, why) });
+    sites.push({ module, report, lines: crashSiteLines(report, crashed, places, why, placesBesideLogs(logDir)) });
   }
   return sites;
 }

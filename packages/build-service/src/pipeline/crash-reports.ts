@@ -19,6 +19,7 @@
  * and only offsets (numbers) are passed to it.
  */
 import { posix } from 'node:path';
+import { crashFrameTexts } from './crash-frames.js';
 import { located, relativeToRoot, type DiagnosticContext, type GccDiagnostic } from './gcc-diagnostics.js';
 
 export const CRASH_MARK = '==contract-crash==';
@@ -176,7 +177,7 @@ export interface CrashSite {
   said: string;
   /** The Problems panel's error at that line (a place of the project only). */
   diagnostic: GccDiagnostic | null;
-  /** Each frame's places, as said with --verbose: `#0 est_update at src-gen/...:248`. */
+  /** Each frame, as said with --verbose (crash-frames.ts): `#0 est_update at src-gen/...:248`, a frame in inlined code one line. */
   frames: string[];
 }
 
@@ -187,27 +188,19 @@ export interface CrashSite {
  * runtime as the sandbox sees it.
  */
 export function crashSite(report: CrashReport, places: CrashPlace[][], ctx: DiagnosticContext, treeRoot: string, runtimeDir: string): CrashSite | null {
-  const exeFrames = report.frames.map((f, i) => ({ f, i })).filter(({ f }) => f.object === 'exe');
   const shown = (file: string): string => posix.join(treeRoot, file);
-  const told: string[] = [];
   let project: { place: CrashPlace; d: GccDiagnostic } | undefined;
   let runtime: CrashPlace | undefined;
-  report.frames.forEach((f, i) => {
-    const k = exeFrames.findIndex((e) => e.i === i);
-    const at = k >= 0 ? places[k] ?? [] : [];
-    if (!at.length) told.push(`#${i} ${f.object === 'exe' ? 'the executable' : f.object}+0x${f.offset.toString(16)}`);
-    for (const p of at) {
-      let where = '?';
-      if (p.file !== null) {
-        const d = located({ severity: 'error', message: '', line: p.line, column: null, children: [] }, p.file, ctx);
-        const ours = relativeToRoot(p.file, ctx) !== null && runtimeFile(p.file, ctx.cwd, runtimeDir) === null;
-        where = `${ours ? shown(d.file!) : runtimeFile(p.file, ctx.cwd, runtimeDir) ?? p.file}:${p.line ?? '?'}`;
-        if (ours && p.line !== null && !project) project = { place: p, d };
-        else if (!ours && runtimeFile(p.file, ctx.cwd, runtimeDir) !== null && p.line !== null && !runtime) runtime = p;
-      }
-      told.push(`#${i} ${p.function} at ${where}`);
-    }
-  });
+  // each place's file: the project's as the project names it, the runtime's as the runtime's, else as compiled
+  const where = (p: CrashPlace & { file: string }): string => {
+    const d = located({ severity: 'error', message: '', line: p.line, column: null, children: [] }, p.file, ctx);
+    const inRuntime = runtimeFile(p.file, ctx.cwd, runtimeDir);
+    const ours = relativeToRoot(p.file, ctx) !== null && inRuntime === null;
+    if (ours && p.line !== null && !project) project = { place: p, d };
+    else if (!ours && inRuntime !== null && p.line !== null && !runtime) runtime = p;
+    return `${ours ? shown(d.file!) : inRuntime ?? p.file}:${p.line ?? '?'}`;
+  };
+  const told = crashFrameTexts(report, places, where);
   if (project) {
     const { place, d } = project;
     const region = d.protectedRegion ? ` in its protected region ${d.protectedRegion.id}` : '';
