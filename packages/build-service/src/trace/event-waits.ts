@@ -14,14 +14,37 @@ import type { KnownRecord } from './records.js';
 /** Flows followed at most (a forged log naming a million flows does not grow the story's memory). */
 const FLOWS_FOLLOWED = 4096;
 
+/** An event flow's waits for room over all its streaks so far, and its deliveries' longest latency. */
+export interface FlowWaitTotals {
+    /** Posts that waited for room (every streak's `waits`). */
+    waits: number;
+    /** Their time waiting, in all (every streak's `wait_ns`). */
+    waitNs: number;
+    /** The longest one (the streaks' largest `max_wait_ns`). */
+    maxWaitNs: number;
+    /** The subscriber's `event_received` records' longest `latency_ns` (0: none known). */
+    maxLatencyNs: number;
+}
+
 /** One event flow's waits for room and its deliveries' latency. */
-interface FlowWaits {
+interface FlowWaits extends FlowWaitTotals {
     producer: string;
     subscriber: string;
-    waits: number;
-    waitNs: number;
-    maxWaitNs: number;
-    maxLatencyNs: number;
+}
+
+/** `waited for room 340 times (4.2 s in all, up to 25 ms)`: a flow's waits over all its streaks so far. */
+export function waitTotalsText(w: FlowWaitTotals): string {
+    return `waited for room ${times(w.waits)} (${durationText(w.waitNs)} in all, up to ${durationText(w.maxWaitNs)})`;
+}
+
+/**
+ * The story's closing line for an event flow whose posts waited (`name`: `BAT:0 -> GCS:0`): `BAT's
+ * events to GCS (BAT:0 -> GCS:0) waited for room 340 times (4.2 s in all, up to 25 ms): GCS takes
+ * its events slower than BAT posts them; delivery latency up to 527 ms`.
+ */
+export function flowWaitsLine(name: string, producer: string, subscriber: string, w: FlowWaitTotals): string {
+    return `${producer}'s events to ${subscriber} (${name}) ${waitTotalsText(w)}: ${subscriber} takes its events slower than ${producer} posts them` +
+        `${w.maxLatencyNs ? `; delivery latency up to ${durationText(w.maxLatencyNs)}` : ''}`;
 }
 
 /** A whole, non-negative number of a record's fields, else 0 (a forged word is no count). */
@@ -100,9 +123,6 @@ export class EventWaits {
      * takes its events slower than BAT posts them; delivery latency up to 527 ms`.
      */
     lines(): string[] {
-        return [...this.flows].filter(([, f]) => f.waits > 0).sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0)).map(([name, f]) =>
-            `${f.producer}'s events to ${f.subscriber} (${name}) waited for room ${times(f.waits)} (${durationText(f.waitNs)} in all, up to ${durationText(f.maxWaitNs)}): ` +
-            `${f.subscriber} takes its events slower than ${f.producer} posts them` +
-            `${f.maxLatencyNs ? `; delivery latency up to ${durationText(f.maxLatencyNs)}` : ''}`);
+        return [...this.flows].filter(([, f]) => f.waits > 0).sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0)).map(([name, f]) => flowWaitsLine(name, f.producer, f.subscriber, f));
     }
 }

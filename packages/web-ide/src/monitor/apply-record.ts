@@ -3,7 +3,7 @@
  * writes which kind, and what peer/port/detail hold). Pure and total: a record it does not use
  * changes only the record count; nothing read from the trace can make it throw.
  */
-import { EventWaits, crashText, dataDropReason, isRule, missedTicksOf, overrunningAfter, skippedReleasesOf, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { crashText, dataDropReason, isRule, missedTicksOf, overrunningAfter, skippedReleasesOf, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { goneModuleSign, type GoneSign } from './gone-signs.js';
 import {
   HIST_BUCKETS, histogramBucket, MAX_NAMES, RECENT_MARKS,
@@ -200,8 +200,8 @@ export function foldDataDropped(s: MonitorState, module: string, port: number | 
 
 /**
  * event_waited: a streak of `module`'s posts on its output `port` that waited for room in `peer`'s
- * full mailbox (its input `to_port`). The flow's first such record is kept in `contract trace`'s
- * words (EventWaits: the line its story tells there), and every streak's waits counted.
+ * full mailbox (its input `to_port`), added to the flow's totals over all its streaks (waits, their
+ * time in all, the longest), as `contract trace`'s closing line for the flow counts them.
  */
 function foldEventWaited(s: MonitorState, k: KnownRecord, t: Ns): void {
   const toPort = num(k.fields['to_port']);
@@ -209,15 +209,17 @@ function foldEventWaited(s: MonitorState, k: KnownRecord, t: Ns): void {
   // a flow whose events were not received yet: `last` is when it was first seen
   const f = entry<FlowCount>(s, s.eventFlows, `${k.module}:${k.port}->${k.peer}:${toPort}`, () => ({ count: 0, last: t }));
   if (!f) return;
-  const waits = num(k.fields['waits']) ?? 0;
+  const waits = whole(k.fields['waits']);
   if (!(waits > 0)) return;
   f.waits = (f.waits ?? 0) + waits;
-  // a follower of its own sees this record as the flow's first: the line trace tells of it
-  f.waited ??= new EventWaits().see(k)?.slice(0, MAX_WAITED_CHARS);
+  f.waitNs = (f.waitNs ?? 0) + whole(k.fields['wait_ns']);
+  f.maxWaitNs = Math.max(f.maxWaitNs ?? 0, whole(k.fields['max_wait_ns']));
 }
 
-/** Longest first-wait line kept for a flow (its names are a log's: a forged one could be a whole line). */
-const MAX_WAITED_CHARS = 400;
+/** A whole, positive number of a record's fields, else 0 (a forged word is no count: EventWaits reads them so). */
+function whole(v: unknown): number {
+  return typeof v === 'number' && Number.isSafeInteger(v) && v > 0 ? v : 0;
+}
 
 /** Longest request name kept for the panel (a forged detail can be a whole line). */
 const MAX_REQUEST_CHARS = 40;
@@ -499,6 +501,9 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       if (!k.peer || k.port === null || from === undefined) return;
       const flow = `${k.peer}:${from}->${k.module}:${k.port}`;
       count(s, s.eventFlows, flow, t);
+      // the longest delivery latency, which the story's closing line of a flow that waited names
+      const latency = whole(f['latency_ns']), e = s.eventFlows.get(flow);
+      if (e && latency > (e.maxLatencyNs ?? 0)) e.maxLatencyNs = latency;
       return;
     }
     default:

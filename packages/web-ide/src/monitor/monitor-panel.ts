@@ -24,7 +24,7 @@ import { MarksStrip, markTooltip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { unheardEventText } from '@contract-studio/build-service/trace';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
-import { NOT_IN_MODEL, crashedModulesText, notReleasedText, schedulingText, flowDropText, flowWaitText, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, ruleTexts, quietDataFlowRow, timeReadout, unheardEventsRow } from './panel-text.js';
+import { NOT_IN_MODEL, crashedModulesText, notReleasedText, schedulingText, flowDropText, flowWaitText, flowWaitTitle, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, ruleTexts, quietDataFlowRow, timeReadout, unheardEventsRow } from './panel-text.js';
 import { visibleText } from '@contract-studio/conventions';
 import { shortAtWord } from '../util/short-text.js';
 
@@ -605,8 +605,8 @@ export class MonitorPanel {
       setText(el, `${kind === 'data' ? '━' : '┅'} ${k.replace('->', ' → ')} ×${f.count}${flowDropText(k, f)} · last ${fmtT(f.last)}${flowWaitText(f)}`);
       setAttr(el, 'data-pulse', String(pulsing.has(k)));
       setAttr(el, 'data-dropped', String(f.dropped ?? 0));
-      setAttr(el, 'data-waited', String(f.waited !== undefined));
-      setAttr(el, 'title', f.waited ?? '');
+      setAttr(el, 'data-waited', String(f.waits ?? 0));
+      setAttr(el, 'title', kind === 'event' ? flowWaitTitle(k, f) : '');
       return el;
     });
     replaceIfChanged(this.flowsEl, [...unheard, ...quiet, ...rows]);

@@ -157,9 +157,16 @@ export interface FlowCount {
   /** Values the flow dropped (data_dropped: the consumer's queue full, ...), and the last one's reason. */
   dropped?: number;
   dropReason?: string;
-  /** An event flow's posts that waited for room in its subscriber's full mailbox (`event_waited`), and its first streak in `contract trace`'s words. */
+  /**
+   * An event flow's posts that waited for room in its subscriber's full mailbox, over all its
+   * `event_waited` records (one per streak) so far: how many, their time in all, the longest
+   * (panel-text.ts flowWaitText, flowWaitTitle: the story's closing line for the flow).
+   */
   waits?: number;
-  waited?: string;
+  waitNs?: number;
+  maxWaitNs?: number;
+  /** An event flow's deliveries' longest latency (`event_received`'s `latency_ns`): the closing line of a flow that waited names it. */
+  maxLatencyNs?: number;
 }
 
 export interface MonitorState {

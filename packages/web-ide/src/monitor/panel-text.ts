@@ -3,7 +3,7 @@
  * readout, the follow button, a rule's row (its cause, accessible name and tooltip). Kept apart so that they are tested
  * without a page (panel-text.test.ts).
  */
-import { durationText, priorityText, readableCause } from '@contract-studio/build-service/trace';
+import { durationText, flowWaitsLine, priorityText, readableCause, waitTotalsText, type FlowWaitTotals } from '@contract-studio/build-service/trace';
 import { MAX_NAMES, quantileBoundNs, type FlowCount, type KeptRequests, type ModuleState, type PeriodicState, type RuleState } from './monitor-state.js';
 
 /** `+2.010325 s`: a time of the run (ns since its first record). */
@@ -97,12 +97,28 @@ export function flowDropText(key: string, f: FlowCount): string {
 }
 
 /**
- * ` · ⚠ events PSH:0 -> BIN:0 waited for room in BIN's full mailbox 5 times in 1.18 s (...)` on an
- * event flow's Deliveries row when its posts waited for room in the subscriber's full mailbox: its
- * first streak, as `contract trace` tells it (the row's count goes on), else ''.
+ * ` · ⚠ waited for room 24 times (5.765 s in all, up to 298.55 ms)` on an event flow's Deliveries
+ * row when its posts waited for room in the subscriber's full mailbox: the totals over all its
+ * streaks so far, in `contract trace`'s words, else ''.
  */
 export function flowWaitText(f: FlowCount): string {
-  return f.waited === undefined ? '' : ` · ⚠ ${f.waited}`;
+  return f.waits ? ` · ⚠ ${waitTotalsText(waitTotals(f))}` : '';
+}
+
+/**
+ * The title of that row: the story's closing line for the flow (`PSH's events to BIN (PSH:0 ->
+ * BIN:0) waited for room 24 times (...): BIN takes its events slower than PSH posts them; delivery
+ * latency up to 1.6 s`), with the totals so far; '' for a flow that did not wait. `key`: `PSH:0->BIN:0`.
+ */
+export function flowWaitTitle(key: string, f: FlowCount): string {
+  if (!f.waits) return '';
+  const [from = '', to = ''] = key.split('->');
+  const name = (end: string): string => end.slice(0, end.lastIndexOf(':'));
+  return flowWaitsLine(`${from} -> ${to}`, name(from), name(to), waitTotals(f));
+}
+
+function waitTotals(f: FlowCount): FlowWaitTotals {
+  return { waits: f.waits ?? 0, waitNs: f.waitNs ?? 0, maxWaitNs: f.maxWaitNs ?? 0, maxLatencyNs: f.maxLatencyNs ?? 0 };
 }
 
 /**
