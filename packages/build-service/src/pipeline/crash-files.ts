@@ -15,7 +15,7 @@ import { execFile } from 'node:child_process';
 import { constants, lstatSync, promises as fsp } from 'node:fs';
 import { isAbsolute, join, relative, resolve } from 'node:path';
 import { SRC_GEN_ARCHITECTURE_DIR } from '@contract-studio/conventions';
-import { crashFrameTexts, placeAsTold, type PlaceWhere } from './crash-frames.js';
+import { crashFrameTexts, crashHeadText, placeAsTold, type PlaceWhere } from './crash-frames.js';
 import { addr2lineArgs, CrashReports, MAX_ADDR2LINE_CHARS, parseAddr2line, type CrashReport } from './crash-reports.js';
 
 /** A crash file's bytes, at most (the runtime's block: 51 lines of 160 characters at most). */
@@ -140,8 +140,7 @@ export function executableBesideLogs(logDir: string, module: string): string {
  * that executable. `where`: how a place's file is shown (placesBesideLogs).
  */
 export function crashSiteLines(report: CrashReport, executable: string | null, places: ReturnType<typeof parseAddr2line> | null, why: string, where: PlaceWhere = placeAsTold): string[] {
-  const addr = report.signal === 11 || report.signal === 7 ? ` at address 0x${report.address}` : '';
-  const lines = [`${report.module} crashed: signal ${report.signal} (${report.signalName})${addr}${report.buildId ? `, executable build-id ${report.buildId}` : ''}`];
+  const lines = [crashHeadText(report)];
   lines.push(...crashFrameTexts(report, places, where).map((t) => `  ${t}`));
   if (!places) {
     const exe = executable ?? `ARCH/modules/${report.module}_mod/${report.module}`;

@@ -8,6 +8,12 @@
  */
 import type { CrashPlace, CrashReport } from './crash-reports.js';
 
+/** A report's head: `EST crashed: signal 11 (SIGSEGV) at address 0x0, executable build-id 8797…`. */
+export function crashHeadText(report: CrashReport): string {
+  const addr = report.signal === 11 || report.signal === 7 ? ` at address 0x${report.address}` : '';
+  return `${report.module} crashed: signal ${report.signal} (${report.signalName})${addr}${report.buildId ? `, executable build-id ${report.buildId}` : ''}`;
+}
+
 /** How a caller shows the file and line of a place whose file is known (`src-gen/.../module.c:248`). */
 export type PlaceWhere = (place: CrashPlace & { file: string }) => string;
 

@@ -26,6 +26,7 @@ import { stdinModulesProblem } from '@contract-studio/codegen/run-executables';
 import { SERVICE_AFFINITY } from './service-affinity.js';
 import { LauncherCrashes } from './launcher-crashes.js';
 import { addr2lineArgs, crashSite, crashSiteLine, CrashReports, MAX_ADDR2LINE_CHARS, parseAddr2line } from './crash-reports.js';
+import { crashHeadText } from './crash-frames.js';
 import { captureInSandbox } from './sandbox-capture.js';
 import { holdsUnderProcessLimit } from './process-limit-warning.js';
 import { describeIssues, RunIssues, type RunIssue } from './run-issues.js';
@@ -157,6 +158,12 @@ export class Job {
   artifacts: RunArtifacts | null = null;
   /** How long collecting them took (ms). */
   artifactsCollectMs: number | null = null;
+  /**
+   * The crash sites the job mapped after its run, as `contract trace` tells a crash file (each
+   * module's head line, then its frames: crash-frames.ts), given with the artifacts (its MODULE.crash
+   * files) so that a replay of the job's logs tells them mapped.
+   */
+  private readonly mappedCrashSites: string[] = [];
   /** How long resolving the sandbox (probing it, the first time in a service) took (ms). */
   sandboxProbeMs: number | null = null;
 
@@ -646,6 +653,7 @@ export class Job {
       const site = crashSite(report, parseAddr2line(out), ctx, treeRoot(this.request.kind), runtimePath);
       if (!site) continue;
       sites.set(f.module, site.said);
+      this.mappedCrashSites.push(crashHeadText(report), ...site.frames.map((frame) => `  ${frame}`));
       this.system('run', crashSiteLine(f.module, site));
       for (const frame of site.frames) this.system('run', `${f.module} crash frame ${frame}`);
       if (site.diagnostic) this.addDiagnostic(site.diagnostic);
@@ -796,10 +804,12 @@ export class Job {
   }
 
   /** The JSON listing of the artifacts (no bytes), null when the job has not run. */
-  artifactsJSON(): { files: { name: string; path: string; size: number; gzipSize: number; capped: string | null }[]; skipped: RunArtifacts['skipped']; runDirLeftovers: string[]; collect_ms: number | null } | null {
+  artifactsJSON(): { files: { name: string; path: string; size: number; gzipSize: number; capped: string | null }[]; skipped: RunArtifacts['skipped']; runDirLeftovers: string[]; collect_ms: number | null; crashSites?: string[] } | null {
     const a = this.artifacts;
     if (!a) return null;
-    return { files: a.files.map(({ name, path, size, gzip, capped }) => ({ name, path, size, gzipSize: gzip.length, capped })), skipped: a.skipped, runDirLeftovers: a.runDirLeftovers, collect_ms: this.artifactsCollectMs };
+    // the crash files' sites, mapped in the sandbox right after the run (crashSites: the executable that crashed)
+    const mapped = this.mappedCrashSites.length ? { crashSites: [...this.mappedCrashSites] } : {};
+    return { files: a.files.map(({ name, path, size, gzip, capped }) => ({ name, path, size, gzipSize: gzip.length, capped })), skipped: a.skipped, runDirLeftovers: a.runDirLeftovers, collect_ms: this.artifactsCollectMs, ...mapped };
   }
 
   /**

@@ -46,6 +46,13 @@ export function crashSiteSuite(sandbox: SandboxName, served: TestBuildServer): v
       // cache for bwrap, the image's /opt/contract/runtime for docker)
       expect(service).toContainEqual(expect.stringMatching(/^MAA crash frame #\d+ main at runtime\/src\/module_main\.c:\d+$/));
       await expectSavedReport(job);
+      // the artifacts listing gives the crash file's site mapped, as contract trace tells a crash file: a replay of the job's logs tells it
+      const buildId = /build-id ([0-9a-f]{40})/.exec(await (await fetch(`${served.url}/api/jobs/${job.id}/artifacts/MAA.crash`)).text())![1];
+      const listing = await (await fetch(`${served.url}/api/jobs/${job.id}/artifacts`)).json() as { artifacts: { crashSites?: string[] } };
+      expect(listing.artifacts.crashSites).toEqual([
+        `MAA crashed: signal 11 (SIGSEGV) at address 0x0, executable build-id ${buildId}`,
+        ...service.filter((l) => l.startsWith('MAA crash frame ')).map((l) => `  ${l.slice('MAA crash frame '.length)}`),
+      ]);
     });
 
     test('forged crash reports: only addr2line on the module\'s own executable, bounded', async () => {

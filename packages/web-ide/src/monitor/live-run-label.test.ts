@@ -27,6 +27,9 @@ describe("a live job's label in the Monitor's run list", () => {
     expect(csvLogsRunLabel('j-3', [])).toBe('Build & Run job j-3 · CSV logs');
     expect(csvLogsRunLabel('j-3', ['MSC_1.csv capped', 'LOC_1.csv not downloaded'], 'cancelled'))
       .toBe('Build & Run job j-3 · CSV logs (not whole: MSC_1.csv capped; LOC_1.csv not downloaded) · ended: cancelled');
+    // the crash sites the build service mapped after the run, at the end (as a folder's crash files are told)
+    expect(csvLogsRunLabel('j-3', [], 'failed', undefined, ['MAA crashed: signal 11 (SIGSEGV) at address 0x0', '  #0 f at src-gen/x/module.c:74 (inlined into g at src-gen/x/module.c:268)']))
+      .toBe('Build & Run job j-3 · CSV logs · ended: failed — crash sites (mapped by the build service): MAA crashed: signal 11 (SIGSEGV) at address 0x0; #0 f at src-gen/x/module.c:74 (inlined into g at src-gen/x/module.c:268)');
     // its outcome given later, by the build panel's end
     expect(endedRunLabel(csvLogsRunLabel('j-3', []), false, 'failed')).toBe('Build & Run job j-3 · CSV logs · ended: failed');
   });

@@ -57,6 +57,16 @@ export function streamedRunLabel(jobId: string, outcome: string | undefined, rec
  * capped, one not downloaded) and how the job ended when that run carries it (the live run was
  * forgotten for want of records).
  */
-export function csvLogsRunLabel(jobId: string, problems: readonly string[], outcome?: string, counts?: RecordCounts): string {
-  return `Build & Run job ${jobId} · CSV logs${counts ? unreadableNote(counts) : ''}${problems.length ? ` (not whole: ${problems.join('; ')})` : ''}${endedText(outcome)}`;
+export function csvLogsRunLabel(jobId: string, problems: readonly string[], outcome?: string, counts?: RecordCounts, crashSites: readonly string[] = []): string {
+  return `Build & Run job ${jobId} · CSV logs${counts ? unreadableNote(counts) : ''}${problems.length ? ` (not whole: ${problems.join('; ')})` : ''}${endedText(outcome)}${crashSitesNote(crashSites, 'mapped by the build service')}`;
+}
+
+/**
+ * ` — crash sites (the logs' crash files): MSC crashed: signal 11 (SIGSEGV) ...; #0 ...` at the end
+ * of a replay's label, each line of the sites (contract trace's, crash-files.ts) trimmed, '' for
+ * none; `whose`: whose sites they are (a folder's crash files, unmapped; a job's, mapped by the
+ * build service after its run).
+ */
+export function crashSitesNote(lines: readonly string[], whose: string): string {
+  return lines.length ? ` — crash sites (${whose}): ${lines.map((l) => l.trim()).join('; ')}` : '';
 }

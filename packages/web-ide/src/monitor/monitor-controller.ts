@@ -31,7 +31,7 @@ import { jobOutcome, CONNECTION_LOST, LOST_TRACE } from './live-follow-protocol.
 import { MonitorPanel, type SourceOption } from './monitor-panel.js';
 import { readSupervisorSymbols, type SupervisorSymbols } from './supervisor-symbols.js';
 import { NOT_IN_MODEL_LONG } from './panel-text.js';
-import { csvLogsRunLabel, endedRunLabel, endKnownAfterLossLabel, liveRunLabel, streamedRunLabel } from './live-run-label.js';
+import { crashSitesNote, csvLogsRunLabel, endedRunLabel, endKnownAfterLossLabel, liveRunLabel, streamedRunLabel } from './live-run-label.js';
 import { LOST_WITH_SERVER } from '../build/job-end.js';
 import { count, recordCounts, recordCountsText, unreadableNote } from './record-counts.js';
 import type { ArchSchema } from '../lsp/architecture-model.js';
@@ -320,7 +320,7 @@ export class MonitorController {
     // that is not a trace is said: the replay lacks it
     const problems = [...logs.problems, ...unread];
     const project = this.runs.get(`live:${jobId}`)?.project ?? this.runs.get(`job:${jobId}`)?.project ?? this.deps.project();
-    const run: Run = { id: `job:${jobId}`, label: csvLogsRunLabel(jobId, problems, outcome, recordCounts(model)), model, live: false, whole: true, outcome, project };
+    const run: Run = { id: `job:${jobId}`, label: csvLogsRunLabel(jobId, problems, outcome, recordCounts(model), logs.crashSites), model, live: false, whole: true, outcome, project };
     this.keepRecorded(run);
     return run;
   }
@@ -444,7 +444,7 @@ export class MonitorController {
     const read = leftOut.length ? `${files.length} of ${inFolder} CSV logs in ${where}${counted} (left out: ${leftOut.join('; ')})${whole}` : `${files.length} CSV log(s) in ${where}${counted}`;
     const told = unread.length ? `${read} (not whole: ${unread.join('; ')})` : read;
     // where its crashed modules crashed, from the folder's crash files (the server reads them: GET /api/log-folder)
-    const crashSites = 'crashSites' in listing && listing.crashSites?.length ? ` — crash sites (the logs' crash files): ${listing.crashSites.map((l) => l.trim()).join('; ')}` : '';
+    const crashSites = crashSitesNote('crashSites' in listing ? listing.crashSites ?? [] : [], "the logs' crash files");
     const label = `${told}${crashSites}`;
     // (a log read in part does not run to the run's end: its module is not taken for one that ended without an exit record)
     const run: Run = { id: `dir:${folder}`, label, model, live: false, whole: !partly.length, project: this.deps.projectOf(folder ? `${folder}/x` : 'x') };

@@ -122,6 +122,23 @@ describe('run logs', () => {
       expect(bySize.files.map((x) => x.name)).toEqual([names.MOB, names.ORD, names.SUP, names.VEL]);
     });
 
+    it("gives the crash sites the build service mapped after the run (the listing's crashSites), lines only, bounded", async () => {
+      const sites = ['MAA crashed: signal 11 (SIGSEGV) at address 0x0, executable build-id 71b5', '  #0 store_bad at src-gen/generated/architecture/modules/MAA_mod/module.c:74 (inlined into _exec_module_state at src-gen/generated/architecture/modules/MAA_mod/module.c:268)', '  #1 libc.so.6+0x2724a'];
+      const listing = (crashSites: unknown) => JSON.stringify({ id: 'j', status: 'failed', artifacts: { files: [{ name: 'MAA_1.csv', size: 1 }, { name: 'MAA.crash', size: 200 }], skipped: [], crashSites } });
+      const f = await serve({ '/api/jobs/j/artifacts': [200, listing(sites)], '/api/jobs/j/artifacts/MAA_1.csv': [200, log('MAA', [1])] });
+      const logs = await fetchJobLogs('j', f);
+      expect(logs.crashSites).toEqual(sites);
+      expect(logs.files.map((x) => x.name)).toEqual(['MAA_1.csv']); // the crash file is no log to replay
+      server!.close();
+      const odd = await serve({ '/api/jobs/j/artifacts': [200, listing([7, 'x'.repeat(5000), ...Array.from({ length: 1000 }, (_, i) => `  #${i} f`)])], '/api/jobs/j/artifacts/MAA_1.csv': [200, log('MAA', [1])] });
+      const bounded = (await fetchJobLogs('j', odd)).crashSites!;
+      expect(bounded).toHaveLength(400);
+      expect(bounded[0]).toHaveLength(2000);
+      server!.close();
+      const none = await serve({ '/api/jobs/j/artifacts': [200, listing(undefined)], '/api/jobs/j/artifacts/MAA_1.csv': [200, log('MAA', [1])] });
+      expect((await fetchJobLogs('j', none)).crashSites).toBeUndefined();
+    });
+
     it('fails with a clear message when the job is unknown', async () => {
       const f = await serve({});
       await expect(fetchJobLogs('nope', f)).rejects.toThrow(/artifacts: HTTP 404 no route/);

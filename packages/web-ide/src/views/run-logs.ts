@@ -40,6 +40,8 @@ export interface RunLogs {
   files: LogFile[];
   /** Files that could not be had, with why (left out by the service, download failed). */
   problems: string[];
+  /** A job's crash sites the build service mapped after its run (GET /api/jobs/:id/artifacts `crashSites`: contract trace's lines). */
+  crashSites?: string[];
 }
 
 /**
@@ -77,7 +79,17 @@ export function activationsFromLogs(files: LogFile[]): { acts: Activation[]; err
 
 interface ArtifactListing {
   status: string;
-  artifacts: { files: Array<{ name: string; size: number; capped?: string | null }>; skipped: Array<{ name: string; reason: string }> };
+  artifacts: { files: Array<{ name: string; size: number; capped?: string | null }>; skipped: Array<{ name: string; reason: string }>; crashSites?: unknown };
+}
+
+/** Lines of a job's mapped crash sites kept, at most, and characters of one (the service's: bounded all the same). */
+const MAX_CRASH_SITE_LINES = 8 * 50;
+const MAX_CRASH_SITE_CHARS = 2000;
+
+/** The listing's `crashSites`, when it is a list of lines; bounded. */
+function crashSitesOf(v: unknown): string[] {
+  if (!Array.isArray(v)) return [];
+  return v.filter((l): l is string => typeof l === 'string').slice(0, MAX_CRASH_SITE_LINES).map((l) => l.slice(0, MAX_CRASH_SITE_CHARS));
 }
 
 /**
@@ -201,5 +213,6 @@ export async function fetchJobLogs(id: string, fetchFn: typeof fetch = fetch, ma
       problems.push((e as Error).message);
     }
   }
-  return { label: `Build & Run job ${id}`, files, problems };
+  const crashSites = crashSitesOf(listing.artifacts?.crashSites);
+  return { label: `Build & Run job ${id}`, files, problems, ...(crashSites.length ? { crashSites } : {}) };
 }
