@@ -50,6 +50,11 @@ describe('Monitor: an event flood\'s waits for room, every streak counted', () =
     await expect.poll(() => rowText(page)).toMatch(/ · ⚠ waited for room 24 times \(5\.767 s in all, up to 298\.552 ms\)$/);
     expect(await row(page).getAttribute('title')).toBe(CLOSING);
     expect(await row(page).getAttribute('data-waited')).toBe('24');
+    // in the warning colour, unlike an event flow that did not wait (CAM:0 -> SUP:2)
+    const color = (flow: string) => page.locator(`.monitor-flows .monitor-flow.event[data-flow="${flow}"]`).evaluate((el) => getComputedStyle(el).color);
+    const warn = await page.evaluate(() => { const probe = document.createElement('span'); probe.style.color = 'var(--warn)'; document.body.append(probe); const c = getComputedStyle(probe).color; probe.remove(); return c; });
+    expect(await color('PSH:0->BIN:0')).toBe(warn);
+    expect(await color('CAM:0->SUP:2')).not.toBe(warn);
     await row(page).scrollIntoViewIfNeeded();
     await shot(page, 'monitor-event-flood-01-recorded');
   }, 90_000);
