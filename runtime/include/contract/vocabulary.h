@@ -441,7 +441,9 @@ typedef struct ContractEvent {
     const char *module;        /* source module/supervisor name, or "ORD"                     */
     int port;                  /* its out event port                                          */
     int in_port;               /* the supervisor in port that receives this flow (from the
-                                  function's `subscribe M:o =* :i`); -1 for ORD events         */
+                                  function's `subscribe M:o =* :i`, the one whose variable the
+                                  event reads); -1: any of them (an event reading none of
+                                  them, or several), and for ORD events                        */
     int ntest_clauses;         /* tests `<c1 | c2 | ...>`; 0 = no test (always significant)  */
     const ContractTestClause *test_clauses;
     /* STARTED / ENDOF / DURATION: */

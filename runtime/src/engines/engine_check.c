@@ -274,7 +274,9 @@ static int check_condition(Ctx *x, const ContractSupervisorVocabulary *v, const 
             case CONTRACT_EV_MODULE:
                 if (!ev->module) return fail(x, "%s has no module", what);
                 tl.allow_ord = strcmp(ev->module, "ORD") == 0;
-                if (!tl.allow_ord) {
+                /* -1: a delivery into any in port (docs/engines.md: an event that reads no port
+                   variable of a module port subscribed to several, or several of them) */
+                if (!tl.allow_ord && ev->in_port != -1) {
                     int ok = 0;
                     for (int i = 0; i < v->nin_ports; i++)
                         if (v->in_ports[i].port == ev->in_port) ok = 1;

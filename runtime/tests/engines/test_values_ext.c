@@ -314,6 +314,25 @@ void test_ext_invalid_descriptors_are_refused(void) {
     }
 }
 
+/* A module event's in port: one of the supervisor's, or -1 (a delivery into any of them: the event
+ * reads no port variable of a module port subscribed to several); a port it does not have is refused.
+ * Before, -1 was refused too, so a supervisor with `[CTL:0]` over two subscribes of CTL:0 ran nowhere. */
+void test_module_event_of_any_in_port_is_accepted(void) {
+    char err[256] = "";
+    ContractEventPort in[] = {{2, "status", &type_Scan, NULL}, {3, "status2", &type_Scan, NULL}};
+    const int ports[] = {2, 3, -1, 4};
+    for (int i = 0; i < 4; i++) {
+        ContractEvent ev[] = {{.kind = CONTRACT_EV_MODULE, .module = "CTL", .port = 0, .in_port = ports[i]}};
+        ContractClause cl[] = {{1, ev}};
+        ContractRule rules[] = {{"SEEN", {1, cl}, 0, NULL, {0, NULL}}};
+        ContractFunction fn[] = {{"fly", 0, NULL, 0, 0, NULL, 0, 0, NULL, 1, rules}};
+        ContractSupervisorVocabulary v = {CONTRACT_VOCABULARY_VERSION, "FLT", 90, 40, 5, 70, 2, in, 0, NULL, 1, fn};
+        int rc = contract_check_supervisor_vocabulary(&v, err, sizeof err);
+        if (ports[i] != 4) CHECK(rc == 0);
+        else CHECK(rc == -1 && strstr(err, "(CTL:0): no in event port :4"));
+    }
+}
+
 /* ---- a supervisor on these types ----------------------------------------------------------
  * SCN: in :0 Scan scan; in :1 Mode mode; in :2 bool flag; out :0 float[180] near_out.
  * function watch(): locals float[180] near; Mode m; bool seen.
