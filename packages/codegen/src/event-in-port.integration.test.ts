@@ -5,6 +5,9 @@
  * bound to the first port any rule subscribed CTL:0 to (:2), so the field test's LAND, waiting for
  * `status2` (:3), never fired in a run nor in the simulator.
  */
+import { readdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
 import { EmptyFileSystem } from 'langium';
 import { createCactalServices } from '@contract-studio/language';
 import { describe, expect, it } from 'vitest';
@@ -12,22 +15,9 @@ import { generateFiles } from './generators/generate-files.js';
 import { architectureFromModels } from './model/from-langium.js';
 import { loadProject } from './test-support/load-project.js';
 
-const PROJECT = {
-    'ctl.contract': 'asynchronous module CTL { event flows { out :0 string status; } }',
-    'flt.contract': `import "ctl.contract";
-supervisor FLT {
-    event flows { in :2 string status; in :3 string status2; }
-    fly() {
-        local { string last; }
-        rules {
-            HOLD: [elapsed=2ms] subscribe CTL:0 =* :2; activate resttime module CTL [CTL:0<status == "low">]
-            LAND: [endof(HOLD)] subscribe CTL:0 =* :3 [CTL:0<status2 == "landed">(last = status2)]
-            SEEN: [CTL:0] [duration(SEEN)=1ms]
-            BOTH: [CTL:0<status == "x" | status2 == "y">] [duration(BOTH)=1ms]
-        }
-    }
-}`,
-};
+/** The project (test-support/fixtures/event-in-port, the simulator's event-in-port test runs it too): file name -> text. */
+const FIXTURE = join(fileURLToPath(new URL('.', import.meta.url)), 'test-support', 'fixtures', 'event-in-port');
+const PROJECT = Object.fromEntries(readdirSync(FIXTURE).map((name) => [name, readFileSync(join(FIXTURE, name), 'utf8')]));
 
 /** The `.in_port` of each module event table of FLT's vocabulary.c, by table name. */
 async function eventPorts(): Promise<Record<string, number>> {

@@ -4,29 +4,15 @@
  * into that port. Before, every CTL:0 event was bound to :2 (the first subscribe of CTL:0), so
  * LAND, waiting for `status2`, never ended: CTL's "landed" came in on :3 and matched nothing.
  */
-import { mkdtempSync, mkdirSync, rmSync, writeFileSync } from 'node:fs';
+import { cpSync, mkdtempSync, mkdirSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { loadScenario, runLoadedScenario, type PreparedProject } from '../src/index.js';
-import { prepared } from './support.js';
+import { prepared, REPO } from './support.js';
 
-const FILES: Record<string, string> = {
-    'ctl.contract': 'asynchronous module CTL {\n    event flows { out :0 string status; }\n}\n',
-    'flt.contract': `import "ctl.contract";
-
-supervisor FLT {
-    event flows { in :2 string status; in :3 string status2; }
-    fly() {
-        local { string last; }
-        rules {
-            HOLD: [elapsed=2ms] subscribe CTL:0 =* :2; activate resttime module CTL [CTL:0<status == "low">]
-            LAND: [endof(HOLD)] subscribe CTL:0 =* :3 [CTL:0<status2 == "landed">(last = status2)]
-        }
-    }
-}
-`,
-};
+/** The project, codegen's test fixture (its event-in-port test checks the tables generated from it). */
+const FIXTURE = join(REPO, 'packages', 'codegen', 'src', 'test-support', 'fixtures', 'event-in-port');
 
 let dir: string;
 let project: PreparedProject;
@@ -34,7 +20,7 @@ let project: PreparedProject;
 beforeAll(async () => {
     dir = mkdtempSync(join(tmpdir(), 'sim-event-in-port-'));
     mkdirSync(join(dir, 'scenarios'));
-    for (const [name, text] of Object.entries(FILES)) writeFileSync(join(dir, name), text);
+    cpSync(FIXTURE, dir, { recursive: true });
     project = await prepared(dir);
 }, 240_000);
 afterAll(() => rmSync(dir, { recursive: true, force: true }));
