@@ -2,15 +2,15 @@ import type { BuildPanel } from '../build/build-panel.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { fetchJobLogs, type RunLogs } from '../views/run-logs.js';
 import { jobStatusText } from '../build/job-end.js';
-import { askFields, type FieldsProblem } from '../util/dialog.js';
+import { askFields, type FieldsProblem, type FieldValues } from '../util/dialog.js';
 import { toast } from '../util/toast.js';
 import { Emitter } from '../util/emitter.js';
 import { reportError } from './report-error.js';
-import { parseStdinSetting, stdinSettingText } from './stdin-setting.js';
+import { StdinRowProblem, keptStdin, stdinFromRows, stdinRows } from './stdin-setting.js';
+import { readRunSettings, saveRunSettings, isReadyTimeout } from './run-settings-store.js';
 import { MIN_READY_TIMEOUT_SECONDS, isCpuList } from '@contract-studio/conventions';
 import type { SharedJob } from '../../server/api-types.js';
 
-const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
 /**
  * The job this tab follows or followed last, kept for a reload (sessionStorage: one per tab):
  * { jobId, action, project, ended, stopped, otherTabs, gone }. Replaced by the next job the tab follows;
@@ -22,14 +22,6 @@ const FOLLOWED_JOB_KEY = 'contract-studio:followed-job';
 const REPLACED_WITHIN_MS = 10_000;
 const JOB_ID = /^[A-Za-z0-9_-]{1,100}$/;
 /**
- * Kept in the browser, one set for the server's origin: the duration, CPUs and real-time go for
- * every project; the start request (it names the project's own supervisor) only for the project it
- * was saved for (`startFor`: the workspace root and project folder; a value saved without one, by
- * an older version, goes for any); the stdin files (`MODULE=path, ...`: that project's modules and
- * files) likewise, only for `stdinFor`.
- */
-type RunSettings = { duration: number; start?: string; readyTimeout?: number; cpus?: string; realtime?: boolean; stdin?: string };
-/**
  * The job a tab follows or followed last, whether it had ended (a reload shows it again), whether
  * this tab stopped it, for a job another tab started, what it was (its status says so again
  * after a reload), and whether it was lost with the IDE server (a reload says it gone again, in
@@ -38,22 +30,6 @@ type RunSettings = { duration: number; start?: string; readyTimeout?: number; cp
  */
 type Followed = { jobId: string; action?: 'build' | 'run'; project: string; ended: boolean; stopped?: boolean; otherTabs?: SharedWhat; gone?: boolean };
 type SharedWhat = 'Build & Run' | 'build';
-
-/** Whether `v` is a ready timeout a run may ask for (seconds: MIN_READY_TIMEOUT_SECONDS or more). */
-const isReadyTimeout = (v: unknown): v is number => typeof v === 'number' && Number.isFinite(v) && v >= MIN_READY_TIMEOUT_SECONDS;
-
-/** The run settings for the project at `where` (`root/project`). */
-function runSettings(where: string): RunSettings {
-  try {
-    const v = JSON.parse(localStorage.getItem(RUN_SETTINGS_KEY) ?? '{}') as Partial<RunSettings> & { startFor?: unknown; stdinFor?: unknown };
-    const start = v.start && (v.startFor === undefined || v.startFor === where) ? v.start : undefined;
-    const stdin = typeof v.stdin === 'string' && v.stdin && v.stdinFor === where ? v.stdin : undefined;
-    const readyTimeout = isReadyTimeout(v.readyTimeout) ? v.readyTimeout : undefined;
-    return { duration: v.duration ?? 10, start, readyTimeout, cpus: v.cpus || undefined, realtime: v.realtime === true || undefined, stdin };
-  } catch {
-    return { duration: 10 };
-  }
-}
 
 /** Build & Run, Stop, the run settings dialog, the job's status, and the finished run's CSV logs. */
 export class RunController {
@@ -200,9 +176,9 @@ export class RunController {
     try {
       await workspace.saveAll();
       this.project = this.d.project();
-      const { stdin, ...settings } = runSettings(this.where(this.project));
+      const { stdin, ...settings } = readRunSettings(this.where(this.project));
       // a bad entry (one kept by an older page, or edited by hand) is said before anything is submitted
-      await build.start(this.project ? `${workspace.root}/${this.project}` : workspace.root, 'run', { ...settings, stdin: parseStdinSetting(stdin ?? '') });
+      await build.start(this.project ? `${workspace.root}/${this.project}` : workspace.root, 'run', { ...settings, stdin: keptStdin(stdin) });
     } catch (e) {
       reportError(e);
       build.append({ t: Date.now(), step: 'prepare', source: 'service', stream: 'system', line: `could not start: ${(e as Error).message}` });
@@ -216,7 +192,7 @@ export class RunController {
     return this.d.build.stop();
   }
 
-  /** Which project the start request of the run settings is kept for: the workspace root and the project folder. */
+  /** Which project the start request and stdin files of the run settings are kept for: the workspace root and the project folder. */
   private where(project: string): string {
     return `${this.d.workspace.root}/${project}`;
   }
@@ -231,9 +207,16 @@ export class RunController {
   /** The Run settings dialog (the toolbar's ⚙ beside Build & Run, or the command palette). */
   async editSettings(): Promise<void> {
     const where = this.where(this.d.project());
-    const cur = runSettings(where);
+    const cur = readRunSettings(where);
+    // the stdin files kept (a bad one, from an older page or edited by hand, shown to be mended: none then)
+    let keptRows: string[][] = [];
+    try {
+      keptRows = stdinRows(keptStdin(cur.stdin));
+    } catch (e) {
+      toast('error', `${(e as Error).message}: not shown, give the stdin files again`);
+    }
     /** The dialog's values read, or what is wrong (the dialog then stays open on that field, nothing saved). */
-    const read = (r: Record<string, string>): { problem: FieldsProblem } | { duration: number; readyTimeout?: number; cpus: string; stdin: Record<string, string> } => {
+    const read = ({ values: r, rows }: FieldValues): { problem: FieldsProblem } | { duration: number; readyTimeout?: number; cpus: string; stdin: Record<string, string> } => {
       const duration = Number(r.duration);
       if (!Number.isFinite(duration) || duration <= 0) return { problem: { key: 'duration', message: `Duration must be a positive number of seconds, not "${r.duration}"` } };
       const readyText = (r.readyTimeout ?? '').trim();
@@ -242,9 +225,10 @@ export class RunController {
       const cpus = (r.cpus ?? '').trim();
       if (cpus && !isCpuList(cpus)) return { problem: { key: 'cpus', message: `CPUs must be a list such as 1, 0-1 or 0,2, not "${cpus}"` } };
       try {
-        return { duration, readyTimeout, cpus, stdin: parseStdinSetting(r.stdin ?? '') };
+        return { duration, readyTimeout, cpus, stdin: stdinFromRows(rows.stdin ?? []) };
       } catch (e) {
-        return { problem: { key: 'stdin', message: (e as Error).message } };
+        if (!(e instanceof StdinRowProblem)) throw e;
+        return { problem: { key: 'stdin', row: e.row, column: e.column, message: e.message } };
       }
     };
     const r = await askFields('Run settings', [
@@ -252,7 +236,10 @@ export class RunController {
       { key: 'start', label: "Start request (START=), empty = the generator's default (first function of the top supervisor)", value: cur.start ?? '', hint: 'SUPERVISOR.function(parameter = value, ...)' },
       { key: 'readyTimeout', label: "Time every module's init may take before the start request (seconds; READY_TIMEOUT=), empty = 10: a module not ready by then stops the run", value: cur.readyTimeout === undefined ? '' : String(cur.readyTimeout), hint: '10' },
       { key: 'cpus', label: 'Pin every module to these CPUs (CPUS=; steadier periods), empty = the system places them', value: cur.cpus ?? '', hint: '1 or 0-1' },
-      { key: 'stdin', label: "Stdin: a module reads a file of the project on its stdin (MODULE=path, the path from the project folder; commas between), empty = every module reads /dev/null", value: cur.stdin ?? '', hint: 'MAA=commands.txt, MSC=input/msc.txt' },
+      {
+        kind: 'rows', key: 'stdin', name: 'Stdin', label: 'Stdin: a module reads a file of the project on its stdin (one row per module; the path from the project folder), no row = every module reads /dev/null',
+        columns: [{ label: 'Module', hint: 'MAA' }, { label: 'File', hint: 'input/commands.txt' }], rows: keptRows, addLabel: 'Add a module',
+      },
       { key: 'realtime', label: 'Real-time: modules take their SCHED_FIFO priorities in the sandbox, bounded (refused, saying why, where the host cannot grant it)', value: cur.realtime ? 'yes' : '', checkbox: true },
     ], (values) => {
       const v = read(values);
@@ -262,11 +249,11 @@ export class RunController {
     const v = read(r);
     if ('problem' in v) return; // checked by the dialog
     const { duration, readyTimeout, cpus, stdin } = v;
-    const stdinText = stdinSettingText(stdin);
-    const realtime = r.realtime === 'yes';
-    localStorage.setItem(RUN_SETTINGS_KEY, JSON.stringify({ duration, start: r.start, ...(r.start ? { startFor: where } : {}), ...(readyTimeout !== undefined ? { readyTimeout } : {}), ...(cpus ? { cpus } : {}), ...(stdinText ? { stdin: stdinText, stdinFor: where } : {}), ...(realtime ? { realtime } : {}) }));
+    const start = r.values.start ?? '';
+    const realtime = r.values.realtime === 'yes';
+    saveRunSettings(where, { duration, start, readyTimeout, cpus, realtime, stdin });
     const reads = Object.entries(stdin).map(([module, file]) => `, ${module} reads ${file}`).join('');
-    toast('info', `Runs last ${duration} s${r.start ? `, start ${r.start}` : ''}${readyTimeout !== undefined ? `, inits get ${readyTimeout} s` : ''}${cpus ? `, modules on CPUs ${cpus}` : ''}${reads}${realtime ? ', real-time priorities' : ''}`);
+    toast('info', `Runs last ${duration} s${start ? `, start ${start}` : ''}${readyTimeout !== undefined ? `, inits get ${readyTimeout} s` : ''}${cpus ? `, modules on CPUs ${cpus}` : ''}${reads}${realtime ? ', real-time priorities' : ''}`);
   }
 
   private async fetchLogs(jobId: string): Promise<void> {

@@ -1,5 +1,6 @@
 import { h } from './dom.js';
 import { openModal } from './modal.js';
+import { RowsField, type RowsFieldSpec } from './rows-field.js';
 
 // Each dialog is a modal (util/modal.ts): focus inside, Tab cycles in it, Escape cancels, and the
 // focus goes back to the element that opened it (a toolbar button, the editor).
@@ -55,54 +56,76 @@ export function confirmAction(title: string, detail: string, okLabel = 'Delete')
 }
 
 /**
- * A small form of labelled fields (text, or a checkbox with `checkbox: true`, read as "yes" or "");
- * resolves the values, or null when cancelled.
+ * A small form of labelled fields (text, a checkbox with `checkbox: true`, read as "yes" or "", or
+ * rows of entries: util/rows-field.ts); resolves the values (`values`: text and checkboxes, `rows`:
+ * each rows field's rows as typed), or null when cancelled.
  */
-/** What is wrong with a dialog's values: said in the dialog, which stays open on the field `key` (what was typed kept). */
+/** What is wrong with a dialog's values: said in the dialog, which stays open on the field `key` (at `row` and `column` of a rows field; what was typed kept). */
 export interface FieldsProblem {
   key?: string;
+  row?: number;
+  column?: number;
   message: string;
+}
+
+export type FieldSpec = { key: string; label: string; value: string; hint?: string; checkbox?: boolean } | (RowsFieldSpec & { kind: 'rows' });
+
+export interface FieldValues {
+  values: Record<string, string>;
+  rows: Record<string, string[][]>;
 }
 
 export function askFields(
   title: string,
-  fields: Array<{ key: string; label: string; value: string; hint?: string; checkbox?: boolean }>,
-  check?: (values: Record<string, string>) => FieldsProblem | undefined,
-): Promise<Record<string, string> | null> {
+  fields: FieldSpec[],
+  check?: (values: FieldValues) => FieldsProblem | undefined,
+): Promise<FieldValues | null> {
   return new Promise((resolve) => {
-    const inputs = fields.map((f) =>
-      f.checkbox
-        ? h('input', { class: 'dialog-check', type: 'checkbox', checked: f.value === 'yes', 'data-key': f.key, 'aria-label': f.label })
-        : h('input', { class: 'dialog-input', value: f.value, spellcheck: 'false', 'data-key': f.key, placeholder: f.hint ?? '', 'aria-label': f.label }),
+    const keys = (i: HTMLInputElement) => i.addEventListener('keydown', (e) => {
+      if (e.key !== 'Enter' && e.key !== 'Escape') return;
+      e.preventDefault(); // not a click on the button the focus goes back to
+      done(e.key === 'Enter');
+    });
+    const controls = fields.map((f) =>
+      'kind' in f
+        ? new RowsField(f, keys)
+        : f.checkbox
+          ? h('input', { class: 'dialog-check', type: 'checkbox', checked: f.value === 'yes', 'data-key': f.key, 'aria-label': f.label })
+          : h('input', { class: 'dialog-input', value: f.value, spellcheck: 'false', 'data-key': f.key, placeholder: f.hint ?? '', 'aria-label': f.label }),
     );
+    const inputs = controls.filter((c): c is HTMLInputElement => !(c instanceof RowsField));
+    const rowsFields = controls.filter((c): c is RowsField => c instanceof RowsField);
+    const allInputs = () => [...inputs, ...rowsFields.flatMap((r) => r.inputs())];
     const valueOf = (i: HTMLInputElement) => (i.type === 'checkbox' ? (i.checked ? 'yes' : '') : i.value.trim());
     let modal: { close(): void } | undefined;
     // a refused Save is said here, the dialog left open with what was typed (an alert: read out at once)
     const problemLine = h('div', { class: 'dialog-problem', role: 'alert' });
     const done = (ok: boolean) => {
       if (!modal) return;
-      const values = Object.fromEntries(inputs.map((i, n) => [fields[n]!.key, valueOf(i)]));
-      const problem = ok && check ? check(values) : undefined;
+      const answer: FieldValues = {
+        values: Object.fromEntries(inputs.map((i) => [i.dataset['key']!, valueOf(i)])),
+        rows: Object.fromEntries(rowsFields.map((r) => [r.key, r.values()])),
+      };
+      const problem = ok && check ? check(answer) : undefined;
       if (problem) {
         problemLine.textContent = problem.message;
-        const at = inputs.find((i) => i.dataset['key'] === problem.key);
-        for (const i of inputs) i.toggleAttribute('aria-invalid', i === at);
+        const rows = rowsFields.find((r) => r.key === problem.key);
+        const at = rows ? rows.input(problem.row ?? 0, problem.column ?? 0) : inputs.find((i) => i.dataset['key'] === problem.key);
+        for (const i of allInputs()) i.toggleAttribute('aria-invalid', i === at);
         (at ?? inputs[0])?.focus();
         return;
       }
       modal.close();
       modal = undefined;
-      resolve(ok ? values : null);
+      resolve(ok ? answer : null);
     };
-    for (const i of inputs) {
-      i.addEventListener('keydown', (e) => {
-        if (e.key !== 'Enter' && e.key !== 'Escape') return;
-        e.preventDefault(); // not a click on the button the focus goes back to
-        done(e.key === 'Enter');
-      });
-    }
+    for (const i of inputs) keys(i);
     const dialog = h('div', { class: 'dialog', 'aria-label': title }, h('div', { class: 'dialog-title' }, title),
-      ...fields.flatMap((f, n) => (f.checkbox ? [h('label', { class: 'dialog-hint dialog-check-row' }, inputs[n]!, ` ${f.label}`)] : [h('label', { class: 'dialog-hint' }, f.label), inputs[n]!])),
+      ...fields.flatMap((f, n) => {
+        const c = controls[n]!;
+        if (c instanceof RowsField) return [c.element];
+        return 'checkbox' in f && f.checkbox ? [h('label', { class: 'dialog-hint dialog-check-row' }, c, ` ${f.label}`)] : [h('label', { class: 'dialog-hint' }, f.label), c];
+      }),
       problemLine,
       h('div', { class: 'dialog-buttons' }, h('button', { class: 'btn', onclick: () => done(false) }, 'Cancel'), h('button', { class: 'btn primary', onclick: () => done(true) }, 'Save')));
     const overlay = h('div', { class: 'dialog-overlay' }, dialog);

@@ -493,9 +493,9 @@ describe('IDE in headless Chromium', () => {
     await page.locator('.dialog-input[data-key=cpus]').fill('0');
     await page.locator('.dialog .btn.primary').click();
     const saved = await page.evaluate(() => JSON.parse(localStorage.getItem('contract-studio:run-settings')!));
-    expect(saved).toEqual({ duration: 4, start: 'GLB.mission(consigne={1.0,2.0,3.0})', startFor: expect.stringMatching(/\/$/), readyTimeout: 20, cpus: '0' });
+    expect(saved).toEqual({ duration: 4, readyTimeout: 20, cpus: '0', projects: { [`${s.workspace}/`]: { start: 'GLB.mission(consigne={1.0,2.0,3.0})' } } });
     // the start request is this project's: another workspace served on the same port does not get it
-    await page.evaluate((v) => localStorage.setItem('contract-studio:run-settings', JSON.stringify({ ...v, startFor: '/elsewhere/robot' })), saved);
+    await page.evaluate(([v, where]) => localStorage.setItem('contract-studio:run-settings', JSON.stringify({ ...v, projects: { '/elsewhere/robot': v.projects[where] } })), [saved, `${s.workspace}/`] as const);
     await page.locator('#btn-run-settings').click();
     expect(await page.locator('.dialog-input[data-key=start]').inputValue()).toBe('');
     expect(await page.locator('.dialog-input[data-key=duration]').inputValue()).toBe('4');
