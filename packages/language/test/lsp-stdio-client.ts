@@ -97,14 +97,15 @@ export async function waitFor(condition: () => boolean, ms = LSP_WAIT_MS): Promi
 
 /**
  * Starts the built server over stdio and initializes it, on workspace folder `folder` (its rootUri
- * too), or on none (`null`: a client that sends no folder); the capabilities it answered.
+ * too), or on none (`null`: a client that sends no folder), the client offering `clientCapabilities`
+ * (none by default); the capabilities it answered.
  */
-export async function startServer(folder: string | null): Promise<{ client: Client; capabilities: Record<string, unknown> }> {
+export async function startServer(folder: string | null, clientCapabilities: Record<string, unknown> = {}): Promise<{ client: Client; capabilities: Record<string, unknown> }> {
     if (!existsSync(SERVER)) throw new Error(`${SERVER} is missing: run \`npm run build -w packages/language\` first`);
     const client = new Client(spawn(process.execPath, [SERVER, '--stdio'], { stdio: 'pipe' }));
     const uri = folder === null ? null : pathToFileURL(folder).toString();
     const init = await client.request<{ capabilities: Record<string, unknown> }>('initialize', {
-        processId: process.pid, rootUri: uri, capabilities: {},
+        processId: process.pid, rootUri: uri, capabilities: clientCapabilities,
         workspaceFolders: uri === null ? null : [{ uri, name: 'ws' }],
     });
     client.notify('initialized', {});

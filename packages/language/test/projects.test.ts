@@ -176,4 +176,49 @@ describe('the language server (stdio) on a workspace folder of several projects 
             await client.stop();
         }
     }, LSP_TEST_MS);
+
+    /**
+     * group/p and group/q, each defining Pose: one project without src-gen/ (rule 2), two with
+     * group/p/src-gen and group/q/src-gen (rule 1). `tell`: the client's watcher event for the
+     * folders made or removed, or none (a client that watches no files for the server).
+     */
+    async function treesMadeAndRemoved(name: string, capabilities: Record<string, unknown>, tell: boolean): Promise<void> {
+        const dir = folder(name, { 'group/p/x.contract': 'datatype Pose {float x = 0.0};\n', 'group/q/y.contract': 'datatype Pose {float x = 0.0};\n' });
+        const { client } = await startServer(dir, capabilities);
+        try {
+            const files = ['group/p/x.contract', 'group/q/y.contract'];
+            const uri = (f: string) => pathToFileURL(join(dir, f)).toString();
+            const messages = () => files.map((f) => (client.latestDiagnostics(uri(f)) ?? []).map((d) => d.message));
+            const duplicated = [
+                ["Datatype 'Pose' is defined more than once in the project (also in group/q/y.contract); datatype names are unique across the project."],
+                ["Datatype 'Pose' is defined more than once in the project (also in group/p/x.contract); datatype names are unique across the project."],
+            ];
+            for (const f of files) client.notify('textDocument/didOpen', { textDocument: { uri: uri(f), languageId: 'cactal', version: 1, text: readFileSync(join(dir, f), 'utf8') } });
+            await waitFor(() => JSON.stringify(messages()) === JSON.stringify(duplicated));
+            expect(messages()).toEqual(duplicated);
+            // contract generate of each: group/p/src-gen and group/q/src-gen made, nothing else changes
+            const trees = ['group/p/src-gen', 'group/q/src-gen'];
+            for (const t of trees) mkdirSync(join(dir, t));
+            // each folder in an event of its own, as a watcher reporting them one by one: the second
+            // update cancels the first (it lost the move: the layout was worked out again with both made)
+            if (tell) for (const t of trees) client.notify('workspace/didChangeWatchedFiles', { changes: [{ uri: uri(t), type: 1 }] });
+            await waitFor(() => messages().every((m) => m.length === 0), 30_000);
+            expect(messages()).toEqual([[], []]);
+            // removed: one project again
+            for (const t of trees) rmSync(join(dir, t), { recursive: true });
+            if (tell) for (const t of trees) client.notify('workspace/didChangeWatchedFiles', { changes: [{ uri: uri(t), type: 3 }] });
+            await waitFor(() => JSON.stringify(messages()) === JSON.stringify(duplicated), 30_000);
+            expect(messages()).toEqual(duplicated);
+        } finally {
+            await client.stop();
+        }
+    }
+
+    it('a src-gen/ folder made or removed takes effect at the watcher event the client sends for the folder (VS Code)', async () => {
+        await treesMadeAndRemoved('server-trees-told', { workspace: { didChangeWatchedFiles: { dynamicRegistration: true } } }, true);
+    }, LSP_TEST_MS);
+
+    it('a src-gen/ folder made or removed on disk takes effect at once for a client that watches no files (Neovim on Linux): the server watches the folders it may appear in', async () => {
+        await treesMadeAndRemoved('server-trees-watched', {}, false);
+    }, LSP_TEST_MS);
 });

@@ -13,6 +13,7 @@ import { createCactalServices } from '../cactal-module.js';
 import { addScenarioSupport } from '../lsp/scenario/scenario-server.js';
 import { followImportsWithoutFolders } from './follow-imports.js';
 import { isTreeFolder } from './load-workspace.js';
+import { watchTreeFolders } from './tree-folder-watcher.js';
 import { SRC_GEN_DIR } from '@contract-studio/conventions';
 import { join } from 'node:path';
 
@@ -24,5 +25,7 @@ const { shared, Cactal } = createCactalServices({ connection, ...NodeFileSystem 
 // the projects of the workspace folders (scoping/projects.ts): a generated tree is a real folder, as generate has it
 Cactal.projects.Projects.configure({ probe: (folder) => isTreeFolder(join(folder.fsPath, SRC_GEN_DIR)) });
 followImportsWithoutFolders(shared, Cactal);
+// a src-gen/ made or removed on disk, for a client that watches no files for the server
+watchTreeFolders(shared);
 addScenarioSupport(shared);
 startLanguageServer(shared);

@@ -8,8 +8,8 @@
  * Langium relinks and revalidates a document only when a file it refers to changes; this builder
  * also revalidates the importers of a changed file, the files that export a name a changed file
  * exported before or exports now, and the files whose project-wide diagnostics depend on a fact a
- * changed file contributed before or contributes now; and every file when a file added or removed
- * moved a file into another project (scoping/projects.ts).
+ * changed file contributed before or contributes now; and every file when a file added or removed,
+ * or a `src-gen/` folder made or removed, moved a file into another project (scoping/projects.ts).
  */
 import {
     Cancellation, DefaultDocumentBuilder, DocumentState, URI, UriUtils,
@@ -27,14 +27,21 @@ export class CactalDocumentBuilder extends DefaultDocumentBuilder {
      * those changes: an update cancelled by the next keystroke must not lose what changed.
      */
     private readonly pendingFacts = new Map<string, DocumentFacts>();
+    /**
+     * The project of every document as it was before the first of the updates since the last
+     * completed one that may have changed the layout: a cancelled one (a second src-gen/ made right
+     * after the first, the next keystroke) must not lose the move.
+     */
+    private pendingProjects: Map<string, string> | undefined;
 
     override async update(changed: URI[], deleted: URI[], cancelToken = Cancellation.CancellationToken.None): Promise<void> {
         const touchedUris = [...changed, ...deleted].map((u) => u.toString());
         const before = this.documentsAt(touchedUris);
         // a file added or removed may change which project the others are in (projects.ts: a second
         // first-level folder with .contract files splits the opened folder into projects)
+        // (a src-gen/ folder made or removed too: the URI of a folder, no document)
         const layoutMayChange = deleted.length > 0 || changed.some((u) => !this.langiumDocuments.hasDocument(u));
-        const projectsBefore = layoutMayChange ? this.projectKeys() : undefined;
+        if (layoutMayChange) this.pendingProjects ??= this.lastProjectKeys();
         for (const [uri, doc] of before) if (!this.pendingFacts.has(uri)) this.pendingFacts.set(uri, documentFacts(doc));
         this.namesBeforeUpdate = this.exportedNames(new Set(before.keys()));
         await super.update(changed, deleted, cancelToken);
@@ -47,6 +54,7 @@ export class CactalDocumentBuilder extends DefaultDocumentBuilder {
         const settled = (doc: LangiumDocument) => !touched.has(doc.uri.toString()) && doc.state === DocumentState.Validated;
         // names the changed files export now: files that export them too must show (or drop) the duplicate
         const namesNow = this.exportedNames(touched);
+        const projectsBefore = this.pendingProjects;
         const projectsNow = projectsBefore && this.projectKeys();
         const moved = projectsNow !== undefined && [...projectsNow].some(([uri, key]) => projectsBefore!.has(uri) && projectsBefore!.get(uri) !== key);
         const relink = all.filter((doc) => settled(doc) && (moved || this.exportsAny(doc, namesNow)));
@@ -56,6 +64,7 @@ export class CactalDocumentBuilder extends DefaultDocumentBuilder {
         for (const doc of revalidate) this.resetToState(doc, DocumentState.IndexedReferences);
         // from here a cancelled build is resumed by the next update (it rebuilds every document not validated)
         this.pendingFacts.clear();
+        this.pendingProjects = undefined;
         if (relink.length + revalidate.length > 0) {
             await this.buildDocuments([...relink, ...revalidate], this.updateBuildOptions, cancelToken);
         }
@@ -96,11 +105,21 @@ export class CactalDocumentBuilder extends DefaultDocumentBuilder {
 
     /** The project of every document (projects.ts), by URI string. */
     private projectKeys(): Map<string, string> {
+        return this.keysBy((projects, uri) => projects.keyOf(uri));
+    }
+
+    /** The project every document was last found in (not worked out again: the layout as the last build saw it). */
+    private lastProjectKeys(): Map<string, string> {
+        return this.keysBy((projects, uri) => projects.lastKeyOf(uri));
+    }
+
+    private keysBy(key: (projects: CactalServices['projects']['Projects'], uri: URI) => string | undefined): Map<string, string> {
         const keys = new Map<string, string>();
         for (const doc of this.langiumDocuments.all) {
             if (!this.serviceRegistry.hasServices(doc.uri)) continue;
             const services = this.serviceRegistry.getServices(doc.uri) as Partial<CactalServices>;
-            if (services.projects) keys.set(doc.uri.toString(), services.projects.Projects.keyOf(doc.uri));
+            const k = services.projects && key(services.projects.Projects, doc.uri);
+            if (k !== undefined) keys.set(doc.uri.toString(), k);
         }
         return keys;
     }

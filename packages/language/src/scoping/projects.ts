@@ -30,6 +30,8 @@ export class CactalProjects {
     private readonly keys: WorkspaceCache<string, string>;
     private readonly trees: WorkspaceCache<string, boolean>;
     private readonly finders: WorkspaceCache<string, (path: string) => ProjectRoot>;
+    /** The last project key found for each document URI (lastKeyOf). */
+    private readonly known = new Map<string, string>();
 
     constructor(private readonly shared: LangiumSharedCoreServices) {
         this.keys = new WorkspaceCache(shared);
@@ -64,7 +66,20 @@ export class CactalProjects {
     /** The project of the document at `uri`: its root folder's URI as a string ('' when nothing is opened). */
     keyOf(uri: URI): string {
         const key = uri.toString();
-        return this.keys.get(key, () => this.compute(uri, new Set()));
+        return this.keys.get(key, () => {
+            const project = this.compute(uri, new Set());
+            this.known.set(key, project);
+            return project;
+        });
+    }
+
+    /**
+     * The project the document at `uri` was last found in (undefined if never asked): kept across
+     * workspace builds, unlike keyOf's answers, so an update can compare with the layout as it was
+     * before it even when an earlier update that changed it was cancelled (the document builder).
+     */
+    lastKeyOf(uri: URI): string | undefined {
+        return this.known.get(uri.toString());
     }
 
     /** The root folder of the document's project, if there is one. */
