@@ -10,6 +10,7 @@ import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { startSession, openIde, openFile, shot, type Session } from './harness.js';
+import { axeScan, seriousOf } from './axe.js';
 
 const SETTINGS = 'contract-studio:run-settings';
 let s: Session;
@@ -74,6 +75,8 @@ describe("a workspace of two projects: each project's run settings", () => {
     await page.keyboard.press('Tab');
     await page.keyboard.type('in/d.txt');
     await shot(page, 'run-settings-stdin-rows');
+    // every row's inputs and ✕ named: no serious or critical accessibility violation in the dialog
+    expect(seriousOf(await axeScan(page, 'run settings with stdin rows'))).toEqual([]);
     await page.keyboard.press('Enter'); // Save
     await expect.poll(() => page.locator('.dialog-overlay').count()).toBe(0);
     expect(await shown()).toEqual({ start: 'SUPA.go()', rows: [['MAA', 'in, a é.txt'], ['MSD', 'in/d.txt']] });
