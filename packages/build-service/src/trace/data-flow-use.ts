@@ -12,11 +12,18 @@
  *   releases.
  * Only flows connected SILENT_FLOW_MIN_NS in all are told: a flow connected for a moment (a
  * schema activated and deactivated at once) may rightly have delivered nothing. Bounded: at most
- * FLOWS_FOLLOWED flows, a few numbers each.
+ * FLOWS_FOLLOWED flows, a few numbers each. The event flows a supervisor connects (an event
+ * schema's `A:p =* B:i`) are told by the same rules, with who connected them (supervisor-flow-use.ts).
+ *
+ * A record's time is read (a BigInt) only where it is needed: at a connect or a disconnect, and at
+ * the end for a flow still connected. Every other record only moves the run's end so far, kept as
+ * its digits (compared as text: a live Monitor feeds every line here, and a BigInt per line cost
+ * it 0.1 µs a record).
  */
 import { durationText } from './duration-text.js';
 import { ownString } from './parse.js';
 import type { KnownRecord } from './records.js';
+import { SupervisorFlowUse, type SupervisorFlow } from './supervisor-flow-use.js';
 
 /** A data flow is told only when connected this long in all (its connections summed): 1 s. */
 export const SILENT_FLOW_MIN_NS = 1_000_000_000;
@@ -61,14 +68,28 @@ export class DataFlowUse {
     private readonly byConsumer = new Map<string, FlowUse[]>();
     /** Flows connected since ORD's last activation: that activation names their schema. */
     private pending: FlowUse[] = [];
-    /** The latest record's time: a flow still connected at the end counts up to it. */
-    private lastNs: bigint | undefined;
+    /** The latest record's time, its digits (laterTime): a flow still connected at the end counts up to it. */
+    private lastMono: string | undefined;
+    /** The event flows supervisors connected. */
+    private readonly bySupervisors = new SupervisorFlowUse();
 
     /** Follows one record (any kind: its time is the run's end so far). */
     see(k: KnownRecord): void {
-        const t = BigInt(k.monoNs);
-        if (this.lastNs === undefined || t > this.lastNs) this.lastNs = t;
-        if (k.kind === 'scheduler' && k.module === 'ORD') this.scheduler(k, t);
+        this.seeTime(k.monoNs);
+        this.seeFlow(k);
+    }
+
+    /** A record's time, its mono_ns digits: the run's end so far when later than any before. */
+    seeTime(mono: string): void {
+        if (this.lastMono === undefined || laterTime(mono, this.lastMono)) this.lastMono = mono;
+    }
+
+    /** What one record does to the flows, its time left to seeTime (read here only at a connect or a disconnect). */
+    seeFlow(k: KnownRecord): void {
+        if (k.kind === 'scheduler' && k.module === 'ORD') this.scheduler(k);
+        else if (k.kind === 'supervisor' && k.module !== 'ORD') this.bySupervisors.supervisorLine(k);
+        else if (k.kind === 'event_posted') this.bySupervisors.posted(k);
+        else if (k.kind === 'event_received') this.bySupervisors.received(k);
         else if (k.kind === 'data_posted') {
             const f = this.flows.get(`${k.module}:${k.port ?? '?'} -> ${k.peer}:${String(k.fields['to_port'] ?? '?')}`);
             if (f?.since !== undefined) f.posted++;
@@ -80,7 +101,7 @@ export class DataFlowUse {
         }
     }
 
-    private scheduler(k: KnownRecord, t: bigint): void {
+    private scheduler(k: KnownRecord): void {
         const what = k.fields['what'];
         if (what === 'activate') {
             const schema = String(k.fields['schema'] ?? '');
@@ -94,7 +115,7 @@ export class DataFlowUse {
         let f = this.flows.get(name);
         if (what === 'disconnect') {
             if (f?.since !== undefined) {
-                f.connectedNs += Number(t - f.since);
+                f.connectedNs += Number(BigInt(k.monoNs) - f.since);
                 f.since = undefined;
             }
             return;
@@ -110,13 +131,18 @@ export class DataFlowUse {
         }
         const k0 = k.fields['periodicity'];
         f.periodicity = typeof k0 === 'number' && Number.isSafeInteger(k0) && k0 > 0 ? k0 : 1;
-        f.since ??= t;
+        f.since ??= BigInt(k.monoNs);
         if (this.pending.length < FLOWS_FOLLOWED) this.pending.push(f);
     }
 
     /** How long the flow was connected in all, up to the run's last record for a flow still connected. */
-    private connectedNs(f: FlowUse): number {
-        return f.connectedNs + (f.since !== undefined && this.lastNs !== undefined ? Number(this.lastNs - f.since) : 0);
+    private connectedNs(f: FlowUse | SupervisorFlow): number {
+        return f.connectedNs + (f.since !== undefined && this.lastMono !== undefined ? Number(BigInt(this.lastMono) - f.since) : 0);
+    }
+
+    /** Whether an event flow a supervisor connected, connected long enough, delivered nothing or had nothing taken. */
+    private silentEvents(f: SupervisorFlow): boolean {
+        return this.connectedNs(f) >= SILENT_FLOW_MIN_NS && (f.posted === 0 || f.received === 0);
     }
 
     /** Whether the flow, connected long enough, delivered nothing or had nothing read. */
@@ -131,13 +157,14 @@ export class DataFlowUse {
     }
 
     /** Flows that delivered nothing, and flows far sparser than their reader: the line of counts. */
-    get counts(): { silent: number; sparse: number } {
-        let silent = 0, sparse = 0;
+    get counts(): { silent: number; sparse: number; silentEvents: number } {
+        let silent = 0, sparse = 0, silentEvents = 0;
         for (const f of this.flows.values()) {
             if (this.silent(f)) silent++;
             else if (this.sparse(f)) sparse++;
         }
-        return { silent, sparse };
+        for (const f of this.bySupervisors.flows.values()) if (this.silentEvents(f)) silentEvents++;
+        return { silent, sparse, silentEvents };
     }
 
     /** One line per data flow told (silent, then sparse), in flow order, at the story's end. */
@@ -159,6 +186,26 @@ export class DataFlowUse {
                     `1 value for ${Math.round(f.consumerReleases / Math.max(f.posted, 1))} releases`);
             }
         }
-        return out;
+        return [...out, ...this.eventLines()];
     }
+
+    /** One line per event flow a supervisor connected that delivered nothing, in flow order. */
+    private eventLines(): string[] {
+        const out: string[] = [];
+        for (const f of [...this.bySupervisors.flows.values()].filter((g) => this.silentEvents(g))) {
+            const name = `${f.producer}:${f.port} ${f.arrow} ${f.consumer}:${f.toPort}`;
+            const who = [...(f.schemas.length ? [`schema ${f.schemas.join(', ')}`] : []), `connected by ${f.connectedBy.join(', ')}`].join(', ');
+            const head = `event flow ${name} connected for ${durationText(this.connectedNs(f))} (${who}): `;
+            out.push(f.posted === 0
+                ? `${head}0 events delivered (${f.producer} posted none on its output :${f.port}); ${f.consumer} received nothing`
+                : `${head}${plural(f.posted, 'event')} posted, none taken (${f.consumer} never took one from its input :${f.toPort}: GetEventId)`);
+        }
+        return out.sort();
+    }
+}
+
+/** Whether mono_ns digits `a` are a later time than `b`: more digits, or as many and greater (read as numbers when one has leading zeros, which a forged line may). */
+function laterTime(a: string, b: string): boolean {
+    if (a.charCodeAt(0) === 48 || b.charCodeAt(0) === 48) return BigInt(a) > BigInt(b);
+    return a.length > b.length || (a.length === b.length && a > b);
 }

@@ -55,6 +55,57 @@ describe('a data flow ORD connected that delivered nothing', () => {
     });
 });
 
+/** SUP's rule run.RELAY activating event schema relay at 1 ms (connecting PRD:0 =* CNS:0), and its end at `untilMs` (disconnecting it). */
+function supLog(untilMs: number, sup = 'SUP', arrow = '=*'): string[] {
+    return [
+        `${1 * MS},w,${sup},supervisor,,,0,rule run.RELAY active`,
+        `${1 * MS + 1},w,${sup},sup_rule,,,0,run.RELAY active cause=elapsed=1000000ns`,
+        `${1 * MS + 2},w,${sup},supervisor,,,0,activate schema relay() (event schema)`,
+        `${1 * MS + 3},w,${sup},supervisor,PRD,,0,connect PRD:0 ${arrow} CNS:0`,
+        `${1 * MS + 4},w,${sup},flow_hold,flow-PRD-0-CNS-0,,0,hold taken`,
+        `${untilMs * MS},w,${sup},supervisor,,,0,rule run.RELAY inactive`,
+        `${untilMs * MS + 1},w,${sup},supervisor,,,0,undo: deactivate schema relay (event schema)`,
+        `${untilMs * MS + 2},w,${sup},supervisor,PRD,,0,undo: disconnect PRD:0 ${arrow} CNS:0`,
+    ];
+}
+
+/** PRD posting on :0 to CNS:0 at each of `atMs`, and CNS taking them when `taken`. */
+function events(atMs: number[], taken = true): { PRD: string[]; CNS: string[] } {
+    return {
+        PRD: atMs.map((t) => `${t * MS},w,PRD,event_posted,CNS,0,4,to_port=0`),
+        CNS: taken ? atMs.map((t) => `${t * MS + 1000},w,CNS,event_received,PRD,0,4,from_port=0 latency_ns=1000`) : [],
+    };
+}
+
+describe('an event flow a supervisor connected that delivered nothing', () => {
+    it('is told at the end with who connected it and its schema, and counted', () => {
+        const story = storyOf({ 'SUP_1.csv': supLog(2000), 'END_1.csv': [`${2500 * MS},w,END,module_exit,,,0,status=0 records=1`] });
+        expect(story).toContain("event flow PRD:0 =* CNS:0 connected for 1.999 s (schema relay, connected by SUP's rule run.RELAY): 0 events delivered (PRD posted none on its output :0); CNS received nothing");
+        expect(story.at(-1)).toContain(', 1 event flow a supervisor connected that delivered nothing, ');
+    });
+
+    it('counts up to the last record when still connected, and tells events posted but never taken', () => {
+        const { PRD } = events([20, 30, 40]);
+        const story = storyOf({ 'SUP_1.csv': supLog(2000).slice(0, 5), 'PRD_1.csv': [...PRD, `${1501 * MS},w,PRD,module_exit,,,0,status=0 records=4`] });
+        expect(story).toContain("event flow PRD:0 =* CNS:0 connected for 1.5 s (schema relay, connected by SUP's rule run.RELAY): 3 events posted, none taken (CNS never took one from its input :0: GetEventId)");
+    });
+
+    it('is not told when it delivered, when connected less than 1 s, nor for events posted while disconnected', () => {
+        const told = (logs: Record<string, string[]>) => storyOf(logs).filter((l) => l.startsWith('event flow '));
+        expect(told({ 'SUP_1.csv': supLog(2000), ...events([500]) })).toEqual([]);
+        expect(told({ 'SUP_1.csv': supLog(900) })).toEqual([]);
+        const late = events([2100], true);
+        expect(told({ 'SUP_1.csv': supLog(2000), ...late })).toHaveLength(1);
+    });
+
+    it('stays connected while another supervisor holds it, and names both; a one-shot flow is named with its arrow', () => {
+        const two = storyOf({ 'SUP_1.csv': supLog(600), 'TWO_1.csv': supLog(1800, 'TWO') });
+        expect(two).toContain("event flow PRD:0 =* CNS:0 connected for 1.799 s (schema relay, connected by SUP's rule run.RELAY, TWO's rule run.RELAY): 0 events delivered (PRD posted none on its output :0); CNS received nothing");
+        const once = storyOf({ 'SUP_1.csv': supLog(2000, 'SUP', '=>') });
+        expect(once.filter((l) => l.startsWith('event flow PRD:0 => CNS:0 connected for 1.999 s'))).toHaveLength(1);
+    });
+});
+
 describe('event posts that waited for room in a full mailbox', () => {
     const bat = [
         `${1000 * MS},w,BAT,event_posted,GCS,0,256,to_port=0`,

@@ -383,7 +383,7 @@ export class StoryTeller {
     private readonly cappedLogs = new Map<string, string>();
     /** Per periodic schema (at most STORY_FOLLOWED): how late ORD released its cycles, told in its schema line. */
     private readonly lateness = new Map<string, ReleaseLateness>();
-    /** ORD's data flows: those connected long enough that delivered nothing, or far less than read (flowLines). */
+    /** ORD's data flows: those connected long enough that delivered nothing, or far less than read; the event flows supervisors connected that delivered nothing (flowLines). */
     private readonly dataFlows = new DataFlowUse();
     /** Event flows whose posts waited for room in their subscriber's full mailbox (flowLines). */
     private readonly eventWaits = new EventWaits();
@@ -742,8 +742,9 @@ export class StoryTeller {
 
     /** The line of counts' words for the flows flowLines tells (`1 data flow that delivered nothing, 340 event posts that waited for room, `), '' when none. */
     private flowCounts(): string {
-        const { silent, sparse } = this.dataFlows.counts, waits = this.eventWaits.waits;
+        const { silent, sparse, silentEvents } = this.dataFlows.counts, waits = this.eventWaits.waits;
         return `${silent ? `${plural(silent, 'data flow')} that delivered nothing, ` : ''}` +
+            `${silentEvents ? `${plural(silentEvents, 'event flow')} a supervisor connected that delivered nothing, ` : ''}` +
             `${sparse ? `${plural(sparse, 'data flow')} written far less often than read, ` : ''}` +
             `${waits ? `${plural(waits, 'event post')} that waited for room, ` : ''}`;
     }

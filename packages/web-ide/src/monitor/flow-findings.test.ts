@@ -2,6 +2,7 @@
  * What the flows did, told as `contract trace` tells it: an event flood (fixtures/event-flood-run:
  * PSH posts every 1 ms, BIN takes 20 ms an event) warned on its Deliveries row and marked where its
  * first waits happen; data flows that delivered nothing or far less than read (fixtures/silent-flow-run)
+ * and an event flow a supervisor connected that delivered nothing (fixtures/silent-event-flow-run)
  * told at the records' end. Replayed from the real logs, and fed line by line as a live run is.
  */
 import { describe, it, expect } from 'vitest';
@@ -91,5 +92,22 @@ describe('data flows that delivered nothing or far less than read (fixtures/sile
     expect(model.live.quietDataFlows).toEqual([]);
     model.recordsEnded();
     expect(model.live.quietDataFlows).toEqual([SPARSE, SILENT]);
+  });
+});
+
+describe('an event flow a supervisor connected that delivered nothing (fixtures/silent-event-flow-run, a real bwrap run)', () => {
+  const logs = logsOf('silent-event-flow-run');
+  const SILENT_EVENTS = "event flow PRD:0 =* CNS:0 connected for 3.002 s (schema relay, connected by MIS's rule mission.RELAY): " +
+    '0 events delivered (PRD posted none on its output :0); CNS received nothing';
+
+  it('a whole replay tells it at its end, with who connected it, in trace\'s words', () => {
+    expect(replayed(logs).live.quietDataFlows).toEqual([SILENT_EVENTS]);
+  });
+
+  it('live: none while the run goes on, the same line once the job ended', () => {
+    const model = fedLive(logs);
+    expect(model.live.quietDataFlows).toEqual([]);
+    model.recordsEnded();
+    expect(model.live.quietDataFlows).toEqual([SILENT_EVENTS]);
   });
 });

@@ -5,9 +5,11 @@
  * flows ORD connected that delivered nothing or far less than their reader read (DataFlowUse).
  *
  * The Monitor reads most lines in place (line-scan.ts) without parsing them: the kinds DataFlowUse
- * counts that are read so (`data_posted`, `data_received`, `ord_release`) reach it as a record
- * view made of the line's fields, one object reused for every line (no allocation per record but
- * the time's digits); every other line reaches it with its time only, which is the run's end so far.
+ * counts that are read so (`data_posted`, `data_received`, `ord_release`, a delivered
+ * `event_posted`) reach it as a record view made of the line's fields, one object reused for every
+ * line, without their time (DataFlowUse reads a time only at a connect or a disconnect, parsed
+ * records). The run's end so far is the latest line's time, kept as where its digits are (the line
+ * scan's number compared) and read once, at the records' end: no string nor BigInt per line.
  */
 import { DataFlowUse, EventWaits, type KnownRecord } from '@contract-studio/build-service/trace';
 import { digitsValue, nameIn, scanned } from './line-scan.js';
@@ -22,6 +24,11 @@ export class FlowFindings {
   /** The record view of a line read in place (scannedLine): reused. */
   private readonly postedFields: Record<string, string | number> = {};
   private readonly view: KnownRecord = { kind: '', monoNs: '0', wallTime: '', module: '', peer: '', port: null, size: 0, detail: '', fields: {} };
+  /** The latest line read in place: its time as the scan's number, and where its digits are (read at endLines). */
+  private latest = -1;
+  private latestText = '';
+  private latestFrom = 0;
+  private latestTo = 0;
 
   /**
    * A parsed record: for an event flow's first `event_waited` record, trace's line for it
@@ -34,33 +41,46 @@ export class FlowFindings {
 
   /** The line text[from, to) that scanLine accepted and the model reads in place (`scanned` holds its commas, time and kind). */
   seeScanned(text: string, from: number, to: number): void {
-    const c = scanned.comma, v = this.view;
-    v.kind = scanned.kind;
-    v.monoNs = text.slice(from, c[0]!);
-    if (v.kind === 'data_posted' || v.kind === 'data_received' || v.kind === 'ord_release') {
-      v.module = nameIn(text, c[1]! + 1, c[2]!);
-      v.peer = nameIn(text, c[3]! + 1, c[4]!);
-      v.port = c[5]! > c[4]! + 1 ? digitsValue(text, c[4]! + 1, c[5]!) : null;
-      const toPort = v.kind === 'data_posted' ? numberOf(text, c[6]! + 1, to, 'to_port') : undefined;
-      if (toPort === undefined) v.fields = NO_FIELDS;
-      else {
-        this.postedFields['to_port'] = toPort;
-        v.fields = this.postedFields;
-      }
-    } else {
-      v.module = '';
-      v.peer = '';
-      v.port = null;
-      v.fields = NO_FIELDS;
+    const c = scanned.comma, v = this.view, kind = scanned.kind;
+    this.seeTimeAt(text, from, c[0]!);
+    const posted = kind === 'data_posted' || kind === 'event_posted';
+    if (!posted && kind !== 'data_received' && kind !== 'ord_release') return;
+    v.kind = kind;
+    v.module = nameIn(text, c[1]! + 1, c[2]!);
+    v.peer = nameIn(text, c[3]! + 1, c[4]!);
+    v.port = c[5]! > c[4]! + 1 ? digitsValue(text, c[4]! + 1, c[5]!) : null;
+    v.detail = kind === 'event_posted' && text.endsWith(' failed', to) ? ' failed' : '';
+    const toPort = posted ? numberOf(text, c[6]! + 1, to, 'to_port') : undefined;
+    if (toPort === undefined) v.fields = NO_FIELDS;
+    else {
+      this.postedFields['to_port'] = toPort;
+      v.fields = this.postedFields;
     }
-    this.use.see(v);
+    this.use.seeFlow(v);
+  }
+
+  /** A line's time, its digits text[from, to) (scanned.mono their number): kept when it is the latest so far. */
+  private seeTimeAt(text: string, from: number, to: number): void {
+    const mono = scanned.mono;
+    if (mono < this.latest) return;
+    // equal numbers past 2^53 may be different times: their digits decide (equal below it are the same time)
+    if (mono === this.latest && (mono <= Number.MAX_SAFE_INTEGER || !laterDigits(text, from, to, this.latestText, this.latestFrom, this.latestTo))) return;
+    this.latest = mono;
+    this.latestText = text;
+    this.latestFrom = from;
+    this.latestTo = to;
   }
 
   /** The data flows' lines at the records' end (silent, then sparse, in flow order), in trace's words. */
   endLines(): string[] {
+    if (this.latest >= 0) this.use.seeTime(this.latestText.slice(this.latestFrom, this.latestTo));
     return this.use.lines();
   }
 }
 
 const NO_FIELDS: Record<string, string | number> = Object.freeze({}) as Record<string, string | number>;
 
+/** Whether the digits a[af, at) are a later time than b[bf, bt) (both past 2^53: as BigInts, rare). */
+function laterDigits(a: string, af: number, at: number, b: string, bf: number, bt: number): boolean {
+  return BigInt(a.slice(af, at)) > BigInt(b.slice(bf, bt));
+}
