@@ -38,6 +38,8 @@ const benches = [
   { part: 'trace-settle', cmd: ['npm', 'run', '-s', 'bench:trace-settle', '-w', 'packages/cli'] },
   // the Monitor panel fed a 1 kHz schema's trace at the real rate for 60 s (MONITOR_BENCH_SECONDS), then a 60 s recorded run replayed (about 100 s)
   { part: 'monitor-panel', cmd: ['npm', 'run', '-s', 'bench:monitor-panel', '-w', 'packages/web-ide'] },
+  // the Monitor's live fold in Node, no browser: a 1 kHz schema's records read in place and folded, and the flow findings' share of it (about 30 s)
+  { part: 'monitor-ingest', cmd: ['npm', 'run', '-s', 'bench:monitor-ingest', '-w', 'packages/web-ide'] },
   // a log folder of 90 s of a 1 kHz schema (190 MB) opened in the Monitor: downloaded, decoded and built, frames meanwhile (about 20 s)
   { part: 'monitor-folder', cmd: ['npm', 'run', '-s', 'bench:monitor-folder', '-w', 'packages/web-ide'] },
   // a real Build & Run of a 1 kHz schema, 55 s, watched live in the Monitor: record written -> drawn (about 75 s)

@@ -191,8 +191,9 @@ export interface MonitorState {
   /** Lines that are no record (unreadable). */
   unknownLines: number;
   /**
-   * The connected data flows that delivered nothing or far less than their reader read, in
-   * `contract trace`'s words (DataFlowUse): told once the records are over (MonitorModel.recordsEnded), empty before.
+   * The data flows ORD connected that delivered nothing or far less than their reader read, and the
+   * event flows a supervisor connected that delivered nothing, in `contract trace`'s words
+   * (DataFlowUse): told once the records are over (MonitorModel.recordsEnded), empty before.
    */
   quietDataFlows: string[];
   /**
