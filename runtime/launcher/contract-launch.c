@@ -74,6 +74,8 @@ typedef struct {
     size_t crash_len;
     int crash_state;      /* 0 none, 1 a block naming it is open, 2 a whole block read (a later head starts anew), 3 saved */
     int crashed;          /* died by a signal the launcher did not send */
+    int end_signal;       /* the signal it died by (0: it exited) and its exit status: the FAILED line says which */
+    int end_status;
     int stdin_fd;         /* --stdin NAME=FILE: the file it reads on its stdin (opened O_CLOEXEC), -1: /dev/null */
 } Child;
 
@@ -612,6 +614,7 @@ static void reap(void)
             if (WIFSIGNALED(status)) {
                 int sig = WTERMSIG(status);
                 int ours = c->signalled != 0;
+                c->end_signal = sig;
                 if (!ours) c->failed = 1;
                 if (!ours && sig == SIGKILL) c->killed = 1;
                 if (!ours) { c->crashed = 1; save_crash(c); }
@@ -620,6 +623,8 @@ static void reap(void)
                     sig, strsignal(sig), rttime_note(sig, &ru, note, sizeof note), ours ? "" : when);
             } else {
                 int code = WEXITSTATUS(status);
+                c->end_signal = 0;
+                c->end_status = code;
                 if (code != 0 && !c->signalled) c->failed = 1;
                 /* a module that ends with status 0 before the stop: its own code ended it (exit(0)) */
                 say("module %s (pid %ld) exited with status %d%s", c->name, (long)pid, code,
@@ -1122,12 +1127,15 @@ int main(int argc, char *argv[])
     for (int k = 0; k < n_children; k++) {
         if (!children[k].failed) continue;
         failed++;
-        /* a SIGKILL is no crash of its code: said apart, with who sends one (the `died by signal 9`
-         * line above says when; with a limit, the `stopping: ...` line says which) */
+        /* what ended it, in the words of its end line above: a SIGKILL is no crash of its code, said
+         * apart with who sends one (with a limit, the `stopping: ...` line says which); an exit with
+         * a status is no crash either (its init refused to start, its code called exit(3)) */
         if (children[k].killed)
             say("FAILED: module %s was killed (a SIGKILL the launcher did not send: %s)", children[k].name, sigkill_senders());
+        else if (children[k].end_signal)
+            say("FAILED: module %s died by signal %d (%s)", children[k].name, children[k].end_signal, strsignal(children[k].end_signal));
         else
-            say("FAILED: module %s crashed", children[k].name);
+            say("FAILED: module %s exited with status %d", children[k].name, children[k].end_status);
     }
     /* "cleanly" only when every module ended on its KILL request: one the launcher had to terminate
      * (it did not answer) is named again, after the lines of the others' last output */

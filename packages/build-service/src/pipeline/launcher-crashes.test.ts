@@ -67,4 +67,21 @@ describe("the launcher's crashes, for a failed run's message", () => {
     d.line('FAILED: module CTL crashed');
     expect(d.summary()).toBe('module CTL failed (exited with status 3)');
   });
+  test("the launcher's FAILED line in its own words (died by signal, exited with status) is read as its older `crashed` was", () => {
+    const c = new LauncherCrashes();
+    c.line('module EST (pid 21) died by signal 11 (Segmentation fault)');
+    c.line('FAILED: module EST died by signal 11 (Segmentation fault)');
+    expect(c.summary()).toBe('module EST crashed (died by signal 11 (Segmentation fault))');
+    const d = new LauncherCrashes();
+    d.line('module CTL (pid 22) exited with status 3');
+    d.line('FAILED: module CTL exited with status 3');
+    expect(d.summary()).toBe('module CTL failed (exited with status 3)');
+    expect(d.failures()).toEqual([{ module: 'CTL', how: 'exited with status 3', killed: false, initRefused: false }]);
+    // a killed module's end line with the real-time bound's note is still its end
+    const k = new LauncherCrashes();
+    k.line('module HOG (pid 23) died by signal 9 (Killed): ran 0.5 s under SCHED_FIFO without blocking (real-time mode\'s RLIMIT_RTTIME hard limit 0.5 s)');
+    k.line('FAILED: module HOG was killed (a SIGKILL the launcher did not send: another process\'s)');
+    expect(k.failures()[0]).toMatchObject({ module: 'HOG', killed: true });
+    expect(k.failures()[0]!.how).toMatch(/^died by signal 9 \(Killed\): ran 0.5 s/);
+  });
 });

@@ -4,16 +4,17 @@
  * failed run's message: `run failed: module MSC crashed (died by signal 11 (Segmentation fault))`
  * rather than make's exit status alone, which reads like a build failure. The launcher's words
  * (runtime/launcher/contract-launch.c reap, docs/runtime-api.md "contract-launch"): `module X (pid
- * N) died by signal ...` / `exited with status N ...`, then `FAILED: module X crashed` or `FAILED:
- * module X was killed (...)` at the end.
+ * N) died by signal ...` / `exited with status N ...`, then, at the end, `FAILED: module X died by
+ * signal 11 (Segmentation fault)`, `FAILED: module X exited with status 3` or `FAILED: module X was
+ * killed (...)` (a launcher before 2026-12-07 said `FAILED: module X crashed` for the first two).
  */
+import { launcherEndLine } from '../trace/launcher-end-line.js';
 
-/** How a module ended, as the launcher said it. */
-const END_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) (exited with status \d+(?: while the run stopped)?|died by signal .{1,200})$/;
-/** `crashed`, or `was killed (a SIGKILL the launcher did not send: ...)` (a launcher before that said `crashed` for both). */
-const FAILED_LINE = /^FAILED: module ([A-Za-z_]\w*) (crashed|was killed(?: \(.{1,300}\))?)$/;
 /** The launcher's `died by signal 9 (Killed)`, `... while the run stopped`: a SIGKILL it did not send (it terminates with SIGTERM, and says `terminated`). */
 const SIGKILLED = /^died by signal 9 \(Killed\)( while the run stopped)?$/;
+/** `died by signal S (...)` or `exited with status N`; `was killed (a SIGKILL the launcher did not send: ...)`; `crashed` (an older launcher's, for both of the first). */
+const FAILED_LINE = /^FAILED: module ([A-Za-z_]\w*) (crashed|died by signal \d{1,3} \([^()]{0,100}\)|exited with status \d{1,3}|was killed(?: \(.{1,300}\))?)$/;
+
 /** A generated module's own line when its init region returned 0 (codegen's module-source.ts), its module tag removed. */
 const INIT_REFUSED = /^([A-Za-z_]\w*): its init region returned 0 \(false\): the module does not start$/;
 /** Failures named in one message at most (the others counted). */
@@ -53,14 +54,14 @@ export class LauncherCrashes {
 
   /** A line of contract-launch (its `contract-launch: ` prefix removed). */
   line(text: string): void {
-    const end = END_LINE.exec(text);
+    const end = launcherEndLine(text);
     if (end) {
-      if (this.how.size < 1024) this.how.set(end[1]!, end[2]!);
+      if (!end.how.startsWith('terminated') && this.how.size < 1024) this.how.set(end.module, end.how);
       return;
     }
     const failed = FAILED_LINE.exec(text);
     if (failed && !this.failed.some((f) => f.module === failed[1]) && this.failed.length < 1024)
-      this.failed.push({ module: failed[1]!, killed: failed[2] !== 'crashed' });
+      this.failed.push({ module: failed[1]!, killed: failed[2]!.startsWith('was killed') });
   }
 
   /** A line of module `module`'s output (its `[NAME] ` tag removed): its init region's refusal to start is noted. */

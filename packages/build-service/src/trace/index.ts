@@ -12,6 +12,7 @@ export { schedulerLineFields } from './text-lines.js';
 export { skippedReleasesOf, overrunningAfter, missedTicksOf } from './ord-counts.js';
 export { durationText } from './duration-text.js';
 export { confirmingHold, flowHoldName, type ConfirmingHold } from './action-holds.js';
+export { launcherEndLine, type LauncherEnd } from './launcher-end-line.js';
 export { renderStory, StoryTeller, CUT_RECORD, crashText, unheardEventText, type SchemaFigures, type NamedSchemaFigures, dataDropReason, userRecordText, keptRequestsText, askedToStopText, holdText, ownRunEndText, readableCause, missWaitText, missCriticalDelayNs, priorityText, LATE_RELEASE_SHARE, stuckSaysGone, ignoredUndo, LATE_RELEASE_NS, STORY_FOLLOWED } from './story.js';
 export { DataFlowUse, SILENT_FLOW_MIN_NS, SPARSE_FLOW_RATIO } from './data-flow-use.js';
 export { SupervisorFlowUse } from './supervisor-flow-use.js';
