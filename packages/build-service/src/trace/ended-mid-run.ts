@@ -2,13 +2,16 @@
  * A module whose records stopped mid-run (killed by SIGKILL, crashed before its handler could
  * write, its code called exit()) while the others went on: its log has no exit record, and the
  * story would otherwise say so only at its end. The first sign another module gives that it is
- * gone — a request to it `not sent, it has ended` or to an `unknown module` — is where the story
- * says when its records stopped, when that was before the run's stop (the launcher's KILL): a
- * module the launcher stopped first is not one that ended mid-run.
+ * gone — a request to it that found it `not running` (its mailbox stale), `not sent, it has ended`
+ * or to an `unknown module`, or ORD's `stuck: ... it is no longer running` — is the evidence; the
+ * story tells it at the module's own last record (its time and name: when its records stopped),
+ * when that was before the run's stop (the launcher's KILL): a module the launcher stopped first is
+ * not one that ended mid-run. The story is told as the records are read, so the line comes where
+ * the sign is read, after the lines of the records in between.
  */
 import { ownString } from './parse.js';
 import type { KnownRecord } from './records.js';
-import { receiverGone } from './receiver-gone.js';
+import { receiverGone, stuckSaysGone } from './receiver-gone.js';
 
 /** The end of a runtime error record written while the launcher stopped the run. */
 export const RUN_STOPPING = '; the run is stopping)';
@@ -37,24 +40,31 @@ export class EndedMidRun {
     }
 
     /**
-     * For an `error` record (after see()) that finds a module gone: `ORD's records stopped at
-     * +2.694981s (its last record), before the run's stop, with no exit record: it had ended mid-run
-     * (...)`, once per module; undefined when it ended at the stop, wrote its exit record, or was told.
+     * For a record (after see()) that is the first sign a module is gone (`told`: the story's words
+     * for that record): the story's line for it, at the gone module's last record — `+0.700000s ORD
+     * its records stop here (its last record), before the run's stop, with no exit record: it had
+     * ended mid-run (...); the first sign, at +5.000000s: BSE while the run stopped: STOP request to
+     * ORD: not sent, it has ended (...)` —, once per module; undefined when it ended at the stop,
+     * wrote its exit record, or was told.
      */
-    textFor(k: KnownRecord, offsetText: (ns: bigint) => string): string | undefined {
-        if (k.kind !== 'error') return undefined;
-        // `STOP request to ORD: not sent, it has ended (...)`, `UNSUBSCRIBE request to SRT: unknown module (...)`
-        const gone = receiverGone(k.detail);
-        const receiver = gone && gone.way !== 'not running' ? gone.module : undefined;
+    lineFor(k: KnownRecord, told: string, offsetText: (ns: bigint) => string): string | undefined {
+        const receiver = goneModule(k);
         if (receiver === undefined || receiver === k.module || this.ended.has(receiver) || this.told.has(receiver)) return undefined;
         const last = this.last.get(receiver);
         if (last === undefined || last >= BigInt(k.monoNs)) return undefined;
         // at the stop (the runtime's `; the run is stopping)`): only with the launcher's KILL read, and before it
-        const stopping = k.detail.endsWith(RUN_STOPPING);
+        const stopping = k.kind === 'error' && k.detail.endsWith(RUN_STOPPING);
         if (stopping ? this.stopAt === undefined || last >= this.stopAt : this.stopAt !== undefined && last >= this.stopAt) return undefined;
         if (this.told.size < FOLLOWED) this.told.add(ownString(receiver));
         const when = stopping ? 'before the run\'s stop' : 'while the others went on';
-        return `${receiver}'s records stopped at ${offsetText(last).trim()} (its last record), ${when}, with no exit record: it had ended mid-run ` +
-            '(killed, crashed, or its code called exit(); the launcher\'s output says which)';
+        return `${offsetText(last)} ${receiver.padEnd(4)} its records stop here (its last record), ${when}, with no exit record: it had ended mid-run ` +
+            `(killed, crashed, or its code called exit(); the launcher's output says which); the first sign, at ${offsetText(BigInt(k.monoNs)).trim()}: ${k.module} ${told}`;
     }
+}
+
+/** The module record `k` says is gone: a request's receiver it found gone (any way), ORD's stuck module no longer running. */
+function goneModule(k: KnownRecord): string | undefined {
+    if (k.kind === 'error') return receiverGone(k.detail)?.module;
+    if (k.kind === 'scheduler' && k.fields['what'] === 'stuck' && stuckSaysGone(k.detail) && typeof k.fields['module'] === 'string') return k.fields['module'];
+    return undefined;
 }

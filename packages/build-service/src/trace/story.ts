@@ -16,6 +16,9 @@ import { UndosToOrd } from './undos-to-ord.js';
 import { DataFlowUse } from './data-flow-use.js';
 import { EventWaits } from './event-waits.js';
 import { EndedMidRun, RUN_STOPPING } from './ended-mid-run.js';
+import { stuckSaysGone } from './receiver-gone.js';
+
+export { stuckSaysGone };
 import { countRecord, isRule, type KnownRecord, type RecordCounts, type RuleCause, type TraceRecord, type TraceRecordBase } from './records.js';
 
 /** How the runtime ends the detail of an `error` record written while contract-launch stops the run. */
@@ -60,14 +63,6 @@ const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused',
  */
 export function ignoredUndo(k: Pick<KnownRecord, 'kind' | 'fields'>): boolean {
     return k.kind === 'scheduler' && k.fields['what'] === 'ignored' && typeof k.fields['schema'] === 'string';
-}
-
-/** What a `stuck:` line says instead of the advice when its module is no longer running (crashed, killed). */
-const STUCK_GONE = /: it is no longer running \(it crashed or was killed\)/;
-
-/** Whether the detail of ORD's `stuck:` record says its module is no longer running (the story and the IDE's Monitor). */
-export function stuckSaysGone(detail: string): boolean {
-    return STUCK_GONE.test(detail);
 }
 
 /**
@@ -367,7 +362,7 @@ export class StoryTeller {
     private readonly droppingFlows = new Set<string>();
     /** The supervisors' undos to ORD, followed until ORD serves them: those its end left unserved are told (undos-to-ord.ts). */
     private readonly undos = new UndosToOrd();
-    /** Modules whose records stopped mid-run, told at the first sign another gives that they are gone. */
+    /** Modules whose records stopped mid-run, told at their last record once another gives the first sign that they are gone. */
     private readonly endedMidRun = new EndedMidRun();
     /** Why the run stopped was told (the first module's KILL that says it: the others say the same). */
     private stopWhyTold = false;
@@ -450,7 +445,10 @@ export class StoryTeller {
             // a module that had ended (a crash the simulator made, an exit) never finishes: the advice to set *stateindex = -1 does not fit it
             return `${at(k)} ${k.detail.replace(STUCK_ADVICE, `: it had exited before (${this.exited.get(String(k.fields['module']))})`)}`;
         }
-        if (k.kind === 'scheduler' && (SCHEDULER_TOLD.has(what) || ignoredUndo(k))) return `${at(k)} ${k.detail}`;
+        if (k.kind === 'scheduler' && (SCHEDULER_TOLD.has(what) || ignoredUndo(k))) {
+            // ORD's `stuck: ... it is no longer running`, the first sign that its module is gone: told at that module's last record
+            return (what === 'stuck' ? this.endedMidRun.lineFor(k, k.detail, (ns) => offset(ns - t0)) : undefined) ?? `${at(k)} ${k.detail}`;
+        }
         if (k.kind === 'scheduler' && what === 'other') return `${at(k)} (an ORD line this reader does not know) ${k.detail}`;
         if (k.kind === 'ord_release' || k.kind === 'ord_finished') {
             this.followCycle(k);
@@ -515,8 +513,9 @@ export class StoryTeller {
         if (k.kind === 'requests_kept' || k.kind === 'requests_kept_end') return `${at(k)} ${keptRequestsText(k)}`;
         // a request to a module already gone while the launcher stopped the run (no error line on stderr either)
         if (k.kind === 'error') {
-            const midRun = this.endedMidRun.textFor(k, (ns) => offset(ns - t0));
-            return `${at(k)} ${k.detail.endsWith(RUN_STOPPING) ? 'while the run stopped' : 'error'}: ${k.detail}${midRun ? `; ${midRun}` : ''}`;
+            const told = `${k.detail.endsWith(RUN_STOPPING) ? 'while the run stopped' : 'error'}: ${k.detail}`;
+            // the first sign that its receiver is gone mid-run: told at the receiver's last record, this record its evidence
+            return this.endedMidRun.lineFor(k, told, (ns) => offset(ns - t0)) ?? `${at(k)} ${told}`;
         }
         return undefined;
     }

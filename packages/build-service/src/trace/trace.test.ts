@@ -738,7 +738,7 @@ describe("a supervisor's undo that reached ORD's mailbox after ORD's last read o
     const ord = (lines: string[]) => [CSV_HEADER, '1000100000,w,ORD,scheduler,,,0,activate fastLoop (activation #4 from BSE)', ...lines, ''].join('\n');
     const story = (b: string[], o: string[]) => renderStory(parseTrace([{ name: 'BSE_1.csv', text: bse(b) }, { name: 'ORD_1.csv', text: ord(o) }]));
 
-    it('says where ORD\'s records stopped mid-run at the first sign another module gives that it is gone, not only at the end', () => {
+    it('tells ORD ended mid-run at its own last record, with the first sign another module gives that it is gone as the evidence', () => {
         // field test 69: ORD SIGKILLed at +2.69 s; the supervisor's undo at the stop, +5.09 s, found it ended
         const notSent = '6000000150,w,BSE,error,,,0,"STOP request to ORD: not sent, it has ended (it had already ended; the run is stopping)"';
         const killed = story([
@@ -747,12 +747,35 @@ describe("a supervisor's undo that reached ORD's mailbox after ORD's last read o
             '6000000100,w,BSE,supervisor,ORD,,0,"undo: deactivate schema fastLoop (activation #4, to ORD)"',
             notSent,
         ], ['1700000000,w,ORD,ord_release,CAM,,0,schema=fastLoop cycle=1 release=1']);
-        expect(killed).toContain('+5.000000s BSE  while the run stopped: STOP request to ORD: not sent, it has ended (it had already ended; the run is stopping); ' +
-            'ORD\'s records stopped at +0.700000s (its last record), before the run\'s stop, with no exit record: it had ended mid-run (killed, crashed, or its code called exit(); the launcher\'s output says which)');
+        expect(killed).toContain('+0.700000s ORD  its records stop here (its last record), before the run\'s stop, with no exit record: it had ended mid-run ' +
+            '(killed, crashed, or its code called exit(); the launcher\'s output says which); the first sign, at +5.000000s: BSE while the run stopped: ' +
+            'STOP request to ORD: not sent, it has ended (it had already ended; the run is stopping)');
+        expect(killed.filter((l) => l.includes('STOP request to ORD'))).toHaveLength(1);
         // ORD stopped by the launcher at the stop (its last record after the KILL): nothing added
         const atStop = story(['6000000000,w,BSE,request_received,contract-launch,,0,KILL', notSent],
             ['6000000050,w,ORD,request_received,contract-launch,,0,KILL']);
         expect(atStop).toContain('+5.000000s BSE  while the run stopped: STOP request to ORD: not sent, it has ended (it had already ended; the run is stopping)');
+    });
+
+    it("tells a module gone mid-run at its last record from ORD's stuck record or a request that found it not running, once", () => {
+        // SRT SIGKILLed at +0.2 s; ORD's next START to it found its mailbox stale at +0.3 s, its stuck report came at +2.5 s
+        const srt = [CSV_HEADER, '1100000000,w,SRT,module_started,,,0,pid=41 priority=40', '1200000000,w,SRT,run_finished,,,0,activation=1', ''].join('\n');
+        const ordLog = (lines: string[]) => [CSV_HEADER, '1000000000,w,ORD,module_started,,,0,pid=40 priority=90', ...lines, ''].join('\n');
+        const stuck = '3500000000,w,ORD,scheduler,,,0,stuck: SRT has not finished release #3 after 200 periods: it is no longer running (it crashed or was killed)';
+        const byStuck = renderStory(parseTrace([{ name: 'SRT_1.csv', text: srt }, { name: 'ORD_1.csv', text: ordLog([stuck]) }]));
+        expect(byStuck).toContain('+0.200000s SRT  its records stop here (its last record), while the others went on, with no exit record: it had ended mid-run ' +
+            '(killed, crashed, or its code called exit(); the launcher\'s output says which); the first sign, at +2.500000s: ORD stuck: SRT has not finished release #3 ' +
+            'after 200 periods: it is no longer running (it crashed or was killed)');
+        const notRunning = '1300000000,w,ORD,error,,,0,START request to SRT: module not running (its mailbox is stale) (Connection refused)';
+        const both = renderStory(parseTrace([{ name: 'SRT_1.csv', text: srt }, { name: 'ORD_1.csv', text: ordLog([notRunning, stuck]) }]));
+        expect(both.filter((l) => l.includes('its records stop here'))).toEqual(['+0.200000s SRT  its records stop here (its last record), while the others went on, with no exit record: ' +
+            'it had ended mid-run (killed, crashed, or its code called exit(); the launcher\'s output says which); the first sign, at +0.300000s: ORD error: START request to SRT: ' +
+            'module not running (its mailbox is stale) (Connection refused)']);
+        // the later sign told as it was
+        expect(both).toContain('+2.500000s ORD  stuck: SRT has not finished release #3 after 200 periods: it is no longer running (it crashed or was killed)');
+        // SRT's exit record read: no sign of its end mid-run
+        const exited = [CSV_HEADER, '1100000000,w,SRT,module_started,,,0,pid=41 priority=40', '1200000000,w,SRT,module_exit,,,0,status=0 records=2', ''].join('\n');
+        expect(renderStory(parseTrace([{ name: 'SRT_1.csv', text: exited }, { name: 'ORD_1.csv', text: ordLog([notRunning]) }])).join('\n')).not.toContain('its records stop here');
     });
 
     it('tells with ORD\'s end the undo it never served, as of a run that was stopping', () => {
