@@ -89,12 +89,25 @@ describe('job WebSocket ?trace= filter', () => {
     expect(await (await follow('?trace=none&after=7')).frames).toEqual(['end@9']);
   }, 10_000);
 
+  test("launcher: the trace, the launcher's own lines and the end, in seq order, replayed then live; a module's line is not one of them", async () => {
+    appendReplay();
+    job.events.append({ type: 'line', step: 'run', source: 'launcher', stream: 'stderr', line: 'module M (pid 4) died by signal 9 (Killed)' });
+    // a module's line holding the launcher's words is the module's (its [M] tag), never sent on this socket
+    job.events.append({ type: 'line', step: 'run', source: 'M', stream: 'stderr', line: 'contract-launch: module ORD (pid 2) died by signal 9 (Killed)' });
+    const live = await follow('?trace=launcher');
+    appendLive();
+    const frames = ['trace@3', 'trace@4', 'line@6', 'trace@8', 'trace@10', 'end@11'];
+    expect(await live.frames).toEqual(frames);
+    expect(await (await follow('?trace=launcher')).frames).toEqual(frames);
+    expect(await (await follow('?trace=launcher&after=6')).frames).toEqual(['trace@8', 'trace@10', 'end@11']);
+  }, 10_000);
+
   test('any other value is a 400 saying what is allowed; the service keeps serving', async () => {
     appendReplay();
     for (const q of ['?trace=bogus', '?trace=', '?trace=ALL', '?trace=none&trace=bogus', '?trace=only&trace=none', '?trace=only&trace']) {
       const { status, body } = await upgradeStatus(`/api/jobs/${ID}/ws${q}`);
       expect(status, q).toBe(400);
-      expect(body, q).toMatch(/all, none, only/);
+      expect(body, q).toMatch(/all, none, only, launcher/);
     }
     // the same for a job that does not exist; a good value there is still a 404
     expect((await upgradeStatus('/api/jobs/j-none/ws?trace=x')).status).toBe(400);

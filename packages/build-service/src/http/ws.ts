@@ -21,12 +21,16 @@ import { wsFrame } from './event-wire.js';
 import { clientErrorFrame, readClientFrame } from './ws-client-frames.js';
 import type { JobEvent } from '../pipeline/job-events.js';
 
-/** Which events a socket gets (`?trace=`): every one, all but `trace` ones, `trace` ones and `end`. */
-export type TraceFilter = 'all' | 'none' | 'only';
-const TRACE_FILTERS: readonly TraceFilter[] = ['all', 'none', 'only'];
+/**
+ * Which events a socket gets (`?trace=`): every one, all but `trace` ones, `trace` ones and `end`;
+ * `launcher`: those of `only` and the launcher's own output lines (source `launcher`: its
+ * `contract-launch:` lines, which say how each module ended), for the IDE's Monitor.
+ */
+export type TraceFilter = 'all' | 'none' | 'only' | 'launcher';
+const TRACE_FILTERS: readonly TraceFilter[] = ['all', 'none', 'only', 'launcher'];
 
 /** The refusal of a bad `?trace=`, the body of its 400. */
-export const TRACE_FILTER_ERROR = 'trace must be one of: all, none, only (default all)';
+export const TRACE_FILTER_ERROR = 'trace must be one of: all, none, only, launcher (default all)';
 
 /** The refusal of a bad `?batch=`, the body of its 400. */
 export const BATCH_ERROR = 'batch must be 0 or 1 (default 0)';
@@ -55,6 +59,7 @@ export function traceFilter(url: URL): TraceFilter | null {
 function wanted(filter: TraceFilter, e: JobEvent): boolean {
   if (filter === 'none') return e.type !== 'trace';
   if (filter === 'only') return e.type === 'trace' || e.type === 'end';
+  if (filter === 'launcher') return e.type === 'trace' || e.type === 'end' || (e.type === 'line' && e.source === 'launcher');
   return true;
 }
 

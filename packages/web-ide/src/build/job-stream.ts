@@ -4,7 +4,7 @@
  * seen (`?after=`) when it breaks before the job's end (a network hiccup, the server restarting),
  * RETRIES times, 300 ms more apart each time; past that it is lost (a service that forgot the job).
  * Shared by the build panel (its log, diagnostics and status, `?trace=none`) and the Monitor's
- * live-run worker (the trace, `?trace=only`): no DOM, it runs in a worker too.
+ * live-run worker (the trace, `?trace=launcher`): no DOM, it runs in a worker too.
  * A socket opened with `batch=1` in its query gets its events several to a frame, a JSON array of
  * them in order (the build service sends at most one such frame every 50 ms while they stream:
  * a module printing 10,000 lines a second was 10,000 frames, each a task of the page's thread);

@@ -273,10 +273,10 @@ export function endOrdSchemas(s: MonitorState, t: Ns): void {
 }
 
 /**
- * A record says module `sign.module` is no longer running (gone-signs.ts), though its log wrote no
+ * A record (or the launcher's line) says module `sign.module` is no longer running (gone-signs.ts), though its log wrote no
  * end: shown gone from then on, as a crash is (a module whose end was read, or that crashed, is left as it is).
  */
-function foldGone(s: MonitorState, sign: GoneSign, t: Ns): void {
+export function foldGone(s: MonitorState, sign: GoneSign, t: Ns): void {
   const m = s.modules.get(sign.module);
   if (!m || !m.alive || m.crashed !== undefined || m.gone !== undefined) return;
   m.gone = `gone: ${sign.words}`;

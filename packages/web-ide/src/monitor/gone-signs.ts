@@ -1,13 +1,16 @@
 /**
- * Records that say a module is no longer running although its log wrote no end (it was killed
+ * What says a module has ended although its log wrote no end. Records that say it is no longer running although its log wrote no end (it was killed
  * from outside: a SIGKILL leaves no record of its own): ORD's, or a supervisor's, request to it
  * that found its mailbox stale (`START request to SRT: module not running (its mailbox is stale)
  * (Connection refused)`), a request not sent because it has ended (`STOP request to ORD: not
  * sent, it has ended (...)`), and ORD's stuck record saying so (`stuck: SRT has not finished
  * release #1484 after 200 periods: it is no longer running (it crashed or was killed)`: the
- * check `contract trace` makes, stuckSaysGone).
+ * check `contract trace` makes, stuckSaysGone). And the launcher's own line of the job's output
+ * saying how it ended (`contract-launch: module SRT (pid 41) died by signal 9 (Killed)`, `... exited
+ * with status 3`): it comes as the module is reaped, whether or not any other module sends it a
+ * request (launcherGoneSign).
  */
-import { receiverGone, stuckSaysGone, type KnownRecord } from '@contract-studio/build-service/trace';
+import { launcherEndLine, receiverGone, stuckSaysGone, type KnownRecord } from '@contract-studio/build-service/trace';
 
 export interface GoneSign {
   /** The module the record says is gone. */
@@ -33,4 +36,18 @@ export function goneModuleSign(k: KnownRecord): GoneSign | undefined {
   else if (k.kind === 'scheduler' && k.fields?.['what'] === 'stuck' && stuckSaysGone(k.detail) && typeof k.fields['module'] === 'string') module = k.fields['module'];
   if (!module || module === k.module) return undefined;
   return { module, words: `${k.module}: ${k.detail}`.slice(0, MAX_WORDS) };
+}
+
+/**
+ * The module one of the launcher's own lines says ended (`line`: its text without the
+ * `contract-launch: ` prefix: a `line` event of source `launcher`, on its stderr, of the run step),
+ * or undefined. Hostile text: a module's own output comes tagged with its name (`[SRT] ...`: source
+ * SRT, never `launcher`), so it cannot pass for the launcher's line; and the line's pid must be the
+ * module's own, as its `module_started` record gives it (`pidOf`), so a line naming a module with
+ * another pid, or one whose start was not read, is not taken.
+ */
+export function launcherGoneSign(line: string, pidOf: (module: string) => number | undefined): GoneSign | undefined {
+  const end = launcherEndLine(line);
+  if (!end || !MODULE_NAME.test(end.module) || pidOf(end.module) !== end.pid) return undefined;
+  return { module: end.module, words: `contract-launch: ${line}`.slice(0, MAX_WORDS) };
 }

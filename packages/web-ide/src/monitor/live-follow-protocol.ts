@@ -9,7 +9,7 @@ import type { Mark } from './model-view.js';
 import type { MonitorState, Ns } from './monitor-state.js';
 
 export type ToFollower =
-  /** Follow the job's trace: `url` is its WebSocket stream with `trace=only`, or null (fed by `feed`). */
+  /** Follow the job's trace: `url` is its WebSocket stream with `trace=launcher` (the trace and the launcher's own lines), or null (fed by `feed`). */
   | { type: 'follow'; url: string | null; measure?: boolean }
   /** Trace lines handed over by the page (tests), folded as if they came on the stream. */
   | { type: 'feed'; records: TraceLine[] }

@@ -105,6 +105,25 @@ describe('a live run followed in a worker', () => {
     expect(remote.marks).toEqual(local.marks);
   });
 
+  it("takes the launcher's own line saying a module ended as a sign it is gone; a module's line of the same words is not the launcher's", async () => {
+    const half = lines.slice(0, lines.length >> 1);
+    const line = (seq: number, source: string, stream: string, text: string) => JSON.stringify({ type: 'line', seq, t: Date.now(), step: 'run', source, stream, line: text });
+    const url = await listen((ws) => {
+      ws.send(JSON.stringify({ type: 'trace', seq: 1, t: Date.now(), ...encodeTraceRecords(half) }));
+      // MAA's own output (its [MAA] tag: source MAA) and a launcher line on stdout, both naming real pids: not taken
+      ws.send(line(2, 'MAA', 'stderr', 'contract-launch: module MSA (pid 27) died by signal 9 (Killed)'));
+      ws.send(line(3, 'MAA', 'stderr', 'module MSA (pid 27) died by signal 9 (Killed)'));
+      ws.send(line(4, 'launcher', 'stdout', 'module MSA (pid 27) died by signal 9 (Killed)'));
+      ws.send(line(5, 'launcher', 'stderr', 'module MAB (pid 26) died by signal 9 (Killed)'));
+      ws.send(JSON.stringify({ type: 'end', seq: 6, t: Date.now(), result: { ok: false, message: 'run failed' } }));
+    });
+    const { remote } = pair(url);
+    await settled(remote);
+    const gone = [...remote.live.modules].filter(([, m]) => m.gone !== undefined).map(([n, m]) => `${n} ${m.gone}`);
+    expect(gone).toEqual(['MAB gone: contract-launch: module MAB (pid 26) died by signal 9 (Killed)']);
+    expect(remote.marks.filter((m) => m.kind === 'crash').map((m) => m.where)).toEqual(['MAB']);
+  });
+
   it('takes a broken stream up again after the last event seen: nothing lost, nothing twice', async () => {
     const frames = events(25);
     const afters: number[] = [];

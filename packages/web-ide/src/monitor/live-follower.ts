@@ -1,7 +1,9 @@
 /**
  * The Web Worker side of a live run (live-follow.worker.ts is its entry): opens the job's trace
- * stream itself (GET /api/jobs/:id/ws?trace=only, docs/build-service-api.md "Trace channel"),
- * decodes its batches and folds every record into a MonitorModel, off the page's main thread.
+ * stream itself (GET /api/jobs/:id/ws?trace=launcher, docs/build-service-api.md "Trace channel":
+ * the trace and the launcher's own lines), decodes its batches and folds every record into a
+ * MonitorModel, off the page's main thread; a launcher's line saying a module ended shows it gone
+ * (MonitorModel.launcherLine).
  * The page gets a snapshot of the live state (and the new marks) at most every `snapshotMs`,
  * and the state at an earlier time when it asks for one (remote-model.ts).
  *
@@ -129,6 +131,13 @@ export class LiveFollower {
           this.problem(`a trace event could not be read (${(err as Error).message}); the whole trace is in the run's collected logs`);
         }
       });
+    } else if (e.type === 'line') {
+      // the launcher's own line (its stderr, the run step: a module's output is tagged with its name, never `launcher`)
+      const l = e as { step?: unknown; source?: unknown; stream?: unknown; line?: unknown };
+      if (l.step === 'run' && l.source === 'launcher' && l.stream === 'stderr' && typeof l.line === 'string' && l.line.length <= MAX_LINE) {
+        const line = l.line;
+        this.fold(() => this.model.launcherLine(line));
+      }
     } else if (e.type === 'end') this.finish(undefined, jobOutcome((e as { result?: unknown }).result));
   }
 

@@ -148,10 +148,10 @@ export class MonitorController {
 
   /**
    * Follows a live run in a Web Worker (live-follower.ts) that opens the job's trace stream
-   * itself (`url`: GET /api/jobs/:id/ws?trace=only), or that is fed by `feed` (url null: tests),
+   * itself (`url`: GET /api/jobs/:id/ws?trace=launcher), or that is fed by `feed` (url null: tests),
    * and shows it. The page's main thread only draws: it decodes and folds nothing.
    */
-  followLive(jobId: string, url: string | null = socketUrl(`/api/jobs/${encodeURIComponent(jobId)}/ws?trace=only`)): RemoteMonitorModel {
+  followLive(jobId: string, url: string | null = socketUrl(`/api/jobs/${encodeURIComponent(jobId)}/ws?trace=launcher`)): RemoteMonitorModel {
     this.runs.delete(`job:${jobId}`);
     this.forget(`live:${jobId}`);
     const worker = new Worker(new URL('./live-follow.worker.ts', import.meta.url), { type: 'module' });

@@ -22,12 +22,12 @@
  * for 60 s is about 1.5 million records).
  */
 import { LogClocks, UndosToOrd, type UnservedUndos, parseRecordLine, isRule, askedToStopText, crashText, unheardEventText, ignoredUndo, keptRequestsText, missCriticalDelayNs, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
-import { FOLDED_KINDS, applyRecord, endOrdSchemas, applyUnfolded, isUnheardEvent, unheardPort } from './apply-record.js';
+import { FOLDED_KINDS, applyRecord, endOrdSchemas, foldGone, applyUnfolded, isUnheardEvent, unheardPort } from './apply-record.js';
 import { nameIn, scanLine, scanned } from './line-scan.js';
 import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
 import { cloneState, emptyState, type MonitorState, type Ns } from './monitor-state.js';
 import { marksIn, type Mark, type MonitorView } from './model-view.js';
-import { goneModuleSign } from './gone-signs.js';
+import { goneModuleSign, launcherGoneSign, type GoneSign } from './gone-signs.js';
 import { FlowFindings } from './flow-findings.js';
 
 export interface MonitorModelOptions {
@@ -319,6 +319,10 @@ export class MonitorModel implements MonitorView {
    * states scrubbed back to, which the records alone do not end).
    */
   private ordEnd: Ns | undefined;
+  /** Each module's pid, from its last `module_started` record (at most MAX_GONE modules): a launcher's end line must name it. */
+  private readonly pids = new Map<string, number>();
+  /** The launcher's end lines taken (launcherLine), at the time each came: no record holds them, so stateAt applies them. */
+  private readonly launcherSigns: { t: Ns; sign: GoneSign }[] = [];
 
   constructor(opts: MonitorModelOptions = {}) {
     this.every = Math.max(16, opts.checkpointEvery ?? 1024);
@@ -450,6 +454,28 @@ export class MonitorModel implements MonitorView {
     return false;
   }
 
+  /**
+   * One of the launcher's own lines of the job's output (a `line` event of source `launcher`, its
+   * stderr; without its `contract-launch: ` prefix): one that says a module ended (`module SRT (pid
+   * 41) died by signal 9 (Killed)`, `... exited with status 3`), naming the pid of that module's
+   * own start record, shows it gone from the time of the last record folded, as another module's
+   * record saying so does (gone-signs.ts): the alert line, the strip mark, `Running now … · gone:
+   * SRT`. A module whose end was read (its exit or crash record), or that is already shown gone,
+   * is left as it is. True when it was taken.
+   */
+  launcherLine(line: string): boolean {
+    const sign = launcherGoneSign(line, (m) => this.pids.get(m));
+    if (!sign) return false;
+    const t = this.live.t;
+    const wasGone = this.live.modules.get(sign.module)?.gone;
+    foldGone(this.live, sign, t);
+    if (wasGone !== undefined || this.live.modules.get(sign.module)?.gone === undefined) return false;
+    if (this.launcherSigns.length < MAX_GONE) this.launcherSigns.push({ t, sign });
+    this.goneSign(t, sign.module, wasGone);
+    this.version++;
+    return true;
+  }
+
   /** A parsed record (kept as it is). */
   push(r: TraceRecord): void {
     const t = this.timeOfRecord(r);
@@ -489,6 +515,7 @@ export class MonitorModel implements MonitorView {
     if (r.kind !== 'unknown' && (r as KnownRecord).module === 'ORD') this.ordLastT = t;
     if (r.kind === 'ord_release' || r.kind === 'ord_finished' || r.kind === 'scheduler') this.followCycles(r as KnownRecord);
     if (r.kind === 'module_exit' || r.kind === 'module_crashed' || r.kind === 'module_started' || r.kind === 'scheduler') this.followGone(r as KnownRecord);
+    if (r.kind === 'module_started') this.notePid(r as KnownRecord);
     if (NOTABLE.has(r.kind)) this.notableRecord({ t, r });
     // a module's own record: its detail cut so that the peer, port and size after it show
     else if (r.kind === 'user') this.cappedMark(t, 'user', r as KnownRecord, (k) => userRecordText(k, 80));
@@ -654,6 +681,13 @@ export class MonitorModel implements MonitorView {
     else if (what === 'unstuck' || what === 'late_ack') this.gone.delete(module);
   }
 
+  /** A module's pid from its `module_started` record (`pid=41 priority=40`): the one its launcher's end line must name. */
+  private notePid(k: KnownRecord): void {
+    const pid = Number(k.fields?.['pid']);
+    if (!Number.isSafeInteger(pid) || pid <= 0) return;
+    if (this.pids.has(k.module) || this.pids.size < MAX_GONE) this.pids.set(k.module, pid);
+  }
+
   /** A parsed release, completion of a module's release, or ORD scheduler line: what the schema's cycles wait for. */
   private followCycles(k: KnownRecord): void {
     const f = k.fields ?? {};
@@ -707,6 +741,8 @@ export class MonitorModel implements MonitorView {
       }
       s.t = t;
     }
+    // the launcher's end lines taken after the checkpoint (no record holds them)
+    for (const x of this.launcherSigns) if (x.t >= cp.t && x.t <= t) foldGone(s, x.sign, x.t);
     if (this.ordEnd !== undefined && t >= this.ordEnd) endOrdSchemas(s, this.ordEnd);
     return s;
   }

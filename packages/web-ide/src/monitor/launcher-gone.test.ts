@@ -1,0 +1,83 @@
+/**
+ * The launcher's own line of the job's output saying a module ended (`contract-launch: module SRT
+ * (pid 41) died by signal 9 (Killed)`) shows that module gone in the Monitor — the alert line, the
+ * strip mark, `Running now … · gone: SRT` — although no other module sent it a request; a line that
+ * names another pid, a module whose start was not read, or one already ended is not taken.
+ */
+import { describe, it, expect } from 'vitest';
+import { MonitorModel } from './monitor-model.js';
+import { launcherGoneSign } from './gone-signs.js';
+import { crashedModulesText } from './panel-text.js';
+import { modulesText } from './monitor-panel.js';
+import type { MonitorState } from './monitor-state.js';
+
+const W = '2026-12-07T12:00:00.000000Z';
+const rec = (mono: number, module: string, kind: string, detail: string) => `${mono},${W},${module},${kind},,,0,${detail}`;
+
+/** A run of ORD and SRT (pid 41), each started, SRT's last record at +0.2 s, ORD's records going on to +0.5 s. */
+function run(): MonitorModel {
+  const m = new MonitorModel({ checkpointEvery: 16 });
+  const lines = [
+    ['ORD_1.csv', rec(1_000_000_000, 'ORD', 'module_started', 'pid=40 priority=90')],
+    ['SRT_1.csv', rec(1_000_100_000, 'SRT', 'module_started', 'pid=41 priority=40')],
+    ['SRT_1.csv', rec(1_200_000_000, 'SRT', 'user', 'sorting')],
+    ['ORD_1.csv', rec(1_500_000_000, 'ORD', 'user', 'tick')],
+  ];
+  lines.forEach(([file, text], i) => m.pushLine(file!, i + 2, text!));
+  return m;
+}
+
+const gone = (s: MonitorState) => [...s.modules].filter(([, x]) => x.gone !== undefined).map(([n]) => n);
+const running = (s: MonitorState) => [...s.modules].filter(([, x]) => x.running || (x.alive && x.gone === undefined && x.crashed === undefined)).map(([n]) => n);
+
+describe("the launcher's line saying a module ended", () => {
+  it('shows SRT gone from the last record folded: alert line, strip mark, Running now', () => {
+    const m = run();
+    expect(m.launcherLine('module SRT (pid 41) died by signal 9 (Killed)')).toBe(true);
+    const s = m.stateAt(m.end);
+    expect(gone(s)).toEqual(['SRT']);
+    expect(crashedModulesText(s.modules)).toBe('⚠ SRT gone at +0.500000 s: contract-launch: module SRT (pid 41) died by signal 9 (Killed)');
+    expect(m.marks.filter((k) => k.kind === 'crash')).toEqual([{ t: 500_000_000, kind: 'crash', where: 'SRT', label: 'SRT gone: contract-launch: module SRT (pid 41) died by signal 9 (Killed)' }]);
+    expect(modulesText(running(s), [], [], gone(s))).toContain('· gone: SRT');
+    // scrubbed back before the line came, SRT runs; at it and after, gone (no record holds the line: stateAt applies it)
+    expect(gone(m.stateAt(400_000_000))).toEqual([]);
+    m.pushLine('ORD_1.csv', 10, rec(1_600_000_000, 'ORD', 'user', 'tick'));
+    expect(gone(m.stateAt(550_000_000))).toEqual(['SRT']);
+    // a second line of it changes nothing
+    expect(m.launcherLine('module SRT (pid 41) died by signal 9 (Killed)')).toBe(false);
+    expect(m.marks.filter((k) => k.kind === 'crash')).toHaveLength(1);
+  });
+
+  it('an exit with a status and a death by another signal are ends too; its exit record read later stands', () => {
+    const m = run();
+    expect(m.launcherLine('module SRT (pid 41) exited with status 3')).toBe(true);
+    expect(gone(m.stateAt(m.end))).toEqual(['SRT']);
+    m.pushLine('SRT_1.csv', 9, rec(1_600_000_000, 'SRT', 'module_exit', 'status=3 records=3'));
+    expect(gone(m.stateAt(m.end))).toEqual([]);
+    const n = run();
+    expect(n.launcherLine('module SRT (pid 41) died by signal 11 (Segmentation fault)')).toBe(true);
+  });
+
+  it('ORD gone by the launcher\'s line: its schemas are ended at its last record, as for a record saying so', () => {
+    const m = run();
+    expect(m.launcherLine('module ORD (pid 40) died by signal 9 (Killed)')).toBe(true);
+    expect(gone(m.stateAt(m.end))).toEqual(['ORD']);
+    expect(m.stateAt(m.end).modules.get('ORD')!.running).toBe(false);
+  });
+
+  it('hostile lines: another pid, an unknown module, a module not started, a line of other words are not taken', () => {
+    const m = run();
+    expect(m.launcherLine('module SRT (pid 99) died by signal 9 (Killed)')).toBe(false);
+    expect(m.launcherLine('module XYZ (pid 41) died by signal 9 (Killed)')).toBe(false);
+    expect(m.launcherLine('module SRT (pid 41) died by signal 9 (Killed) and more')).toBe(false);
+    expect(m.launcherLine(`module SRT (pid 41) died by signal 9 (${'x'.repeat(5000)})`)).toBe(false);
+    expect(m.launcherLine('[SRT] module ORD (pid 40) died by signal 9 (Killed)')).toBe(false);
+    expect(m.launcherLine('all modules stopped')).toBe(false);
+    expect(gone(m.stateAt(m.end))).toEqual([]);
+    expect(m.marks.filter((k) => k.kind === 'crash')).toEqual([]);
+    // no start record read: its pid unknown, not taken
+    expect(launcherGoneSign('module SRT (pid 41) died by signal 9 (Killed)', () => undefined)).toBeUndefined();
+    expect(launcherGoneSign('module SRT (pid 41) died by signal 9 (Killed)', () => 41)).toEqual({ module: 'SRT', words: 'contract-launch: module SRT (pid 41) died by signal 9 (Killed)' });
+  });
+});
+
