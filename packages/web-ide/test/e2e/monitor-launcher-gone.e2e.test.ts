@@ -1,0 +1,89 @@
+/**
+ * A module SIGKILLed from outside mid-run, in a real Build & Run of the tutorial (bubblewrap),
+ * which no other module sends a request to afterwards: the Monitor shows it gone while the job still
+ * runs, from the launcher's own line of the job's output (`contract-launch: module MAB (pid N) died
+ * by signal 9 (Killed)`): the alert line, the strip mark, `Running now … · gone: MAB`. Before, it
+ * said nothing of it until the job ended. Real IDE server and build service, headless Chromium.
+ */
+import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { readdirSync, readFileSync, readlinkSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
+import { startSession, openIde, openFile, shot, type Session } from './harness.js';
+
+const canBuild = spawnSync('bwrap', ['--version']).status === 0;
+/** One of the ports this test may use (E2E_LAUNCHER_GONE_PORT to choose another). */
+const PORT = Number(process.env.E2E_LAUNCHER_GONE_PORT ?? 7812);
+const MODULE = 'MAB';
+
+/** The parent of every process of this host, by pid. */
+function parents(): Map<number, number> {
+  const out = new Map<number, number>();
+  for (const d of readdirSync('/proc')) {
+    if (!/^\d+$/.test(d)) continue;
+    try {
+      const stat = readFileSync(`/proc/${d}/stat`, 'utf8');
+      out.set(Number(d), Number(stat.slice(stat.lastIndexOf(')') + 2).split(' ')[1]));
+    } catch { /* gone meanwhile */ }
+  }
+  return out;
+}
+
+/** The host pid of this test's run of module `name`: a descendant of this process (its IDE server's build service) whose executable is `…/<name>_mod/<name>`; undefined while none runs. */
+function modulePid(name: string): number | undefined {
+  const up = parents();
+  const mine = (pid: number) => {
+    for (let p = pid, n = 0; p > 1 && n < 64; p = up.get(p) ?? 0, n++) if (p === process.pid) return true;
+    return false;
+  };
+  for (const pid of up.keys()) {
+    let exe = '';
+    try {
+      exe = readlinkSync(`/proc/${pid}/exe`);
+    } catch {
+      continue;
+    }
+    if (exe.endsWith(`/${name}_mod/${name}`) && mine(pid)) return pid;
+  }
+  return undefined;
+}
+
+describe.skipIf(!canBuild)('a module SIGKILLed mid-run, followed live', () => {
+  let s: Session;
+  beforeAll(async () => {
+    s = await startSession({ port: PORT });
+    await openIde(s);
+  }, 60_000);
+  afterAll(async () => {
+    await s?.close();
+  });
+
+  it("is shown gone from the launcher's line before the job ends: alert, strip mark, Running now", async () => {
+    const { page } = s;
+    await openFile(page, 'supervisor.contract');
+    await page.evaluate(() => localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration: 12, start: 'GLB.mission(consigne={1.0,2.0,3.0})' })));
+    await page.locator('#btn-run').click();
+    await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode'), { timeout: 10_000 }).toBe('live');
+    const status = () => page.locator('#status-job').getAttribute('data-status');
+    // the run has started and the Monitor follows it: MAB's start record was read (its pid: the one the launcher's line names)
+    const started = () => page.evaluate((m) => (window as any).__ide.monitor.current?.live?.modules?.get(m)?.alive === true, MODULE);
+    await expect.poll(started, { timeout: 240_000 }).toBe(true);
+    let pid: number | undefined;
+    await expect.poll(() => (pid = modulePid(MODULE)), { timeout: 20_000 }).toBeDefined();
+    await new Promise((r) => setTimeout(r, 1000));
+    expect(await status()).toBe('running');
+    process.kill(pid!, 'SIGKILL');
+    const killedAt = Date.now();
+    await expect.poll(() => page.locator('.monitor-crashed').textContent(), { timeout: 5000 })
+      .toMatch(new RegExp(`^⚠ ${MODULE} gone at \\+\\d+\\.\\d{6} s: contract-launch: module ${MODULE} \\(pid \\d+\\) died by signal 9 \\(Killed\\)$`));
+    const shownAfterMs = Date.now() - killedAt;
+    // while the job still runs (the run lasts 12 s more or less: the kill came a second into it)
+    expect(await status()).toBe('running');
+    expect(await page.locator('.monitor-modules').textContent()).toMatch(new RegExp(`· gone: ${MODULE}$`));
+    const marks = await page.evaluate(() => ((window as any).__ide.monitor.current?.marks ?? []).filter((m: { kind: string }) => m.kind === 'crash').map((m: { where: string; label: string }) => `${m.where} ${m.label}`));
+    expect(marks).toEqual([expect.stringMatching(new RegExp(`^${MODULE} ${MODULE} gone: contract-launch: module ${MODULE} \\(pid \\d+\\) died by signal 9 \\(Killed\\)$`))]);
+    console.log(`launcher-gone: ${MODULE} shown gone ${shownAfterMs} ms after its SIGKILL, the job still running`);
+    await shot(page, 'monitor-launcher-gone');
+    // the job ends (failed: a module was killed); the page says so
+    await expect.poll(status, { timeout: 60_000 }).not.toBe('running');
+  }, 300_000);
+});
