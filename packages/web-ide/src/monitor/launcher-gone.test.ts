@@ -7,6 +7,7 @@
 import { describe, it, expect } from 'vitest';
 import { MonitorModel } from './monitor-model.js';
 import { launcherGoneSign } from './gone-signs.js';
+import { applyLauncherLines, launcherLinesOf } from './job-launcher-lines.js';
 import { crashedModulesText } from './panel-text.js';
 import { modulesText } from './monitor-panel.js';
 import type { MonitorState } from './monitor-state.js';
@@ -81,3 +82,34 @@ describe("the launcher's line saying a module ended", () => {
   });
 });
 
+
+describe("a replay of a job's logs, with the launcher's lines of its log", () => {
+  const log = [
+    '2026-12-07T12:00:00.100Z run launcher stderr | 2 module(s) running',
+    '2026-12-07T12:00:00.150Z run SRT stderr | module ORD (pid 40) died by signal 9 (Killed)',
+    '2026-12-07T12:00:00.160Z run launcher stdout | module ORD (pid 40) died by signal 9 (Killed)',
+    '2026-12-07T12:00:00.300Z run launcher stderr | module SRT (pid 41) died by signal 9 (Killed)',
+    '2026-12-07T12:00:00.900Z run launcher stderr | all modules stopped',
+  ].join('\n');
+
+  it("reads only the launcher's own lines of the run step, each with its time", () => {
+    expect(launcherLinesOf(log)).toEqual([
+      { wallMs: Date.parse('2026-12-07T12:00:00.100Z'), line: '2 module(s) running' },
+      { wallMs: Date.parse('2026-12-07T12:00:00.300Z'), line: 'module SRT (pid 41) died by signal 9 (Killed)' },
+      { wallMs: Date.parse('2026-12-07T12:00:00.900Z'), line: 'all modules stopped' },
+    ]);
+  });
+
+  it('shows the module gone at the line\'s time on the run\'s time line, in every state from then on, its mark in time order', () => {
+    const m = run(); // first record (ORD's start) at 12:00:00.000000 wall time
+    const files = [{ name: 'ORD_1.csv', text: `mono_ns,wall_time,module,event,peer,port,size,detail\n${rec(1_000_000_000, 'ORD', 'module_started', 'pid=40 priority=90')}\n` },
+      { name: 'SRT_1.csv', text: `mono_ns,wall_time,module,event,peer,port,size,detail\n${rec(1_000_100_000, 'SRT', 'module_started', 'pid=41 priority=40').replace(W, '2026-12-07T12:00:00.000100Z')}\n` }];
+    m.recordsEnded();
+    applyLauncherLines(m, files, launcherLinesOf(log));
+    expect(m.marks.filter((k) => k.kind === 'crash')).toEqual([{ t: 300_000_000, kind: 'crash', where: 'SRT', label: 'SRT gone: contract-launch: module SRT (pid 41) died by signal 9 (Killed)' }]);
+    expect(gone(m.stateAt(299_000_000))).toEqual([]);
+    expect(gone(m.stateAt(300_000_000))).toEqual(['SRT']);
+    expect(gone(m.stateAt(m.end))).toEqual(['SRT']);
+    expect(crashedModulesText(m.stateAt(m.end).modules)).toBe('⚠ SRT gone at +0.300000 s: contract-launch: module SRT (pid 41) died by signal 9 (Killed)');
+  });
+});

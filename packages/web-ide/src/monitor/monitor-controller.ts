@@ -25,6 +25,7 @@ import { api, socketUrl } from '../api.js';
 import { MonitorModel } from './monitor-model.js';
 import { recordedRunSteps, type RecordedRun } from './recorded-run.js';
 import { recordedRunsToLetGo } from './recorded-runs.js';
+import { applyLauncherLines } from './job-launcher-lines.js';
 import type { MonitorView } from './model-view.js';
 import { RemoteMonitorModel } from './remote-model.js';
 import { jobOutcome, CONNECTION_LOST, LOST_TRACE } from './live-follow-protocol.js';
@@ -316,6 +317,8 @@ export class MonitorController {
   /** Job `jobId`'s recorded run from its CSV logs, kept (and the least used recorded runs let go past the bounds). */
   private async recordedJobRun(jobId: string, logs: RunLogs, outcome?: string): Promise<Run> {
     const { model, leftOut: unread } = await recordedRun(logs.files);
+    // the launcher's lines saying how its modules ended: a module killed from outside shown gone, as live
+    applyLauncherLines(model, logs.files, logs.launcherLines);
     // a log the service left out or capped, one that could not be downloaded, or the rest of one
     // that is not a trace is said: the replay lacks it
     const problems = [...logs.problems, ...unread];

@@ -322,7 +322,7 @@ export class MonitorModel implements MonitorView {
   /** Each module's pid, from its last `module_started` record (at most MAX_GONE modules): a launcher's end line must name it. */
   private readonly pids = new Map<string, number>();
   /** The launcher's end lines taken (launcherLine), at the time each came: no record holds them, so stateAt applies them. */
-  private readonly launcherSigns: { t: Ns; sign: GoneSign }[] = [];
+  private readonly launcherSigns: { t: Ns; sign: GoneSign; count: number }[] = [];
 
   constructor(opts: MonitorModelOptions = {}) {
     this.every = Math.max(16, opts.checkpointEvery ?? 1024);
@@ -458,20 +458,26 @@ export class MonitorModel implements MonitorView {
    * One of the launcher's own lines of the job's output (a `line` event of source `launcher`, its
    * stderr; without its `contract-launch: ` prefix): one that says a module ended (`module SRT (pid
    * 41) died by signal 9 (Killed)`, `... exited with status 3`), naming the pid of that module's
-   * own start record, shows it gone from the time of the last record folded, as another module's
+   * own start record, shows it gone from the time of the last record folded (`at`: from that time,
+   * in a replay of a job's logs: the line's wall time on the run's time line), as another module's
    * record saying so does (gone-signs.ts): the alert line, the strip mark, `Running now … · gone:
    * SRT`. A module whose end was read (its exit or crash record), or that is already shown gone,
    * is left as it is. True when it was taken.
    */
-  launcherLine(line: string): boolean {
+  launcherLine(line: string, at?: Ns): boolean {
     const sign = launcherGoneSign(line, (m) => this.pids.get(m));
     if (!sign) return false;
-    const t = this.live.t;
+    // a replay of a job's logs: at the line's own time (`at`, from its wall clock), within the run
+    const t = at === undefined || !Number.isFinite(at) ? this.live.t : Math.min(Math.max(0, at), this.live.t);
     const wasGone = this.live.modules.get(sign.module)?.gone;
     foldGone(this.live, sign, t);
     if (wasGone !== undefined || this.live.modules.get(sign.module)?.gone === undefined) return false;
-    if (this.launcherSigns.length < MAX_GONE) this.launcherSigns.push({ t, sign });
-    this.goneSign(t, sign.module, wasGone);
+    if (this.launcherSigns.length < MAX_GONE) this.launcherSigns.push({ t, sign, count: this.count });
+    if (t < this.live.t) {
+      // before the last record (a replay): its mark in time order (ORD's schemas ended as for a record's sign)
+      if (this.marks.length < this.maxMarks) insertMark(this.marks, { t, kind: 'crash', where: sign.module.slice(0, 64), label: `${sign.module} ${this.live.modules.get(sign.module)!.gone}`.slice(0, 200) });
+      if (sign.module === 'ORD') this.ordGone();
+    } else this.goneSign(t, sign.module, wasGone);
     this.version++;
     return true;
   }
@@ -742,7 +748,7 @@ export class MonitorModel implements MonitorView {
       s.t = t;
     }
     // the launcher's end lines taken after the checkpoint (no record holds them)
-    for (const x of this.launcherSigns) if (x.t >= cp.t && x.t <= t) foldGone(s, x.sign, x.t);
+    for (const x of this.launcherSigns) if (x.count > cp.index && x.t <= t) foldGone(s, x.sign, x.t);
     if (this.ordEnd !== undefined && t >= this.ordEnd) endOrdSchemas(s, this.ordEnd);
     return s;
   }

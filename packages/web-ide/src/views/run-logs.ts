@@ -8,6 +8,7 @@ import { TWIN_LOGS_WHY, traceFileToLogsSteps, twinLogs, type TraceFileLogs } fro
 import { runSliced } from '../util/sliced.js';
 import { api, ApiError, getOk, responsePieces } from '../api.js';
 import { activationsFromCsv, type Activation } from './activation-log.js';
+import { fetchLauncherLines, type LauncherLine } from '../monitor/job-launcher-lines.js';
 
 export interface LogFile {
   name: string;
@@ -42,6 +43,8 @@ export interface RunLogs {
   problems: string[];
   /** A job's crash sites the build service mapped after its run (GET /api/jobs/:id/artifacts `crashSites`: contract trace's lines). */
   crashSites?: string[];
+  /** A job's: the launcher's own lines of its log, each with its time (ms epoch), which say how its modules ended (job-launcher-lines.ts). */
+  launcherLines?: LauncherLine[];
 }
 
 /**
@@ -214,5 +217,5 @@ export async function fetchJobLogs(id: string, fetchFn: typeof fetch = fetch, ma
     }
   }
   const crashSites = crashSitesOf(listing.artifacts?.crashSites);
-  return { label: `Build & Run job ${id}`, files, problems, ...(crashSites.length ? { crashSites } : {}) };
+  return { label: `Build & Run job ${id}`, files, problems, ...(crashSites.length ? { crashSites } : {}), launcherLines: await fetchLauncherLines(id, fetchFn) };
 }
