@@ -3,7 +3,8 @@
  * which no other module sends a request to afterwards: the Monitor shows it gone while the job still
  * runs, from the launcher's own line of the job's output (`contract-launch: module MAB (pid N) died
  * by signal 9 (Killed)`): the alert line, the strip mark, `Running now … · gone: MAB`. Before, it
- * said nothing of it until the job ended. Real IDE server and build service, headless Chromium.
+ * said nothing of it until the job ended. Then the job's CSV logs replayed: MAB gone there too, at
+ * the line's time on the run's time line. Real IDE server and build service, headless Chromium.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { readdirSync, readFileSync, readlinkSync } from 'node:fs';
@@ -85,5 +86,20 @@ describe.skipIf(!canBuild)('a module SIGKILLed mid-run, followed live', () => {
     await shot(page, 'monitor-launcher-gone');
     // the job ends (failed: a module was killed); the page says so
     await expect.poll(status, { timeout: 60_000 }).not.toBe('running');
+    // its CSV logs replayed: MAB gone from the launcher's line of the job's log, at its time on the run's time line
+    const jobOption = page.locator('.monitor-sources option[value^="job:"]');
+    await expect.poll(() => jobOption.count(), { timeout: 30_000 }).toBe(1);
+    await page.locator('.monitor-sources').selectOption(await jobOption.getAttribute('value'));
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 }).toMatch(/· CSV logs/);
+    const replayed = () => page.evaluate((m) => {
+      const run = (window as any).__ide.monitor.current;
+      return { gone: run?.stateAt(run.end)?.modules?.get(m)?.gone, marks: (run?.marks ?? []).filter((k: { kind: string }) => k.kind === 'crash').map((k: { t: number; where: string }) => ({ t: k.t, where: k.where })), end: run?.end };
+    }, MODULE);
+    await expect.poll(async () => (await replayed()).gone, { timeout: 20_000 }).toMatch(new RegExp(`^gone: contract-launch: module ${MODULE} \\(pid \\d+\\) died by signal 9 \\(Killed\\)$`));
+    const { marks: replayMarks, end } = await replayed();
+    expect(replayMarks.map((k) => k.where)).toEqual([MODULE]);
+    // a second or so into the run (the kill came then), well before its end
+    expect(replayMarks[0]!.t).toBeGreaterThan(0);
+    expect(replayMarks[0]!.t).toBeLessThan(end - 5e9);
   }, 300_000);
 });
