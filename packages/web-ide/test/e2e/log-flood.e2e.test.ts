@@ -47,7 +47,7 @@ describe.skipIf(!canBuild)('a module flooding its output, watched in the IDE', (
   it('10,000 lines a second: every line reaches the log, in order, a few hundred lines a WebSocket frame; the log view holds a screenful of rows', async () => {
     const { page } = s;
     await page.evaluate(() => localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration: 6 })));
-    // the frames of the build panel's socket (the Monitor's worker has its own, ?trace=only)
+    // the frames of the build panel's socket (the Monitor's worker has its own, ?trace=launcher)
     const frames: number[] = [];
     let socketUrl = '';
     page.on('websocket', (ws: PageSocket) => {
