@@ -196,6 +196,51 @@ describe('supervisors: more behaviour', () => {
         expect(await conflicts(HOLD, 'other() { rules { LAND: [elapsed=1ms] subscribe MAA:2 =* :2 [elapsed=5ms] } }')).toHaveLength(1);
     });
 
+    it('rules ending each other in turn (A on endof(B), B on endof(A)) are not a subscribe conflict when one event, once, starts the first; they are warned, saying why, when the turn may hold two', async () => {
+        const conflicts = async (rules: string) =>
+            (await build(sup(rules))).diagnostics.filter((d) => d.code === 'supervisor-subscribe-conflict').map((d) => d.message);
+        const sub = 'subscribe MAA:2 =* :2';
+        const post = '[MAA:2<connection_status == "done">]';
+        // the usual alternation: A first at 1 ms, then each on the end of the other
+        expect(await conflicts(`A: [elapsed=1ms or endof(B)] ${sub} ${post}\nB: [endof(A)] ${sub} ${post}`)).toEqual([]);
+        // three in a ring, and the first started by the end of a rule active once
+        expect(await conflicts(`A: [endof(C) or endof(HOLD)] ${sub} ${post}\nB: [endof(A)] ${sub} ${post}\nC: [endof(B)] ${sub} ${post}\nHOLD: [elapsed=1ms] compute doit("x", 1.0) [elapsed=2ms]`)).toEqual([]);
+        // an endof that persists or a module event beside the turn's endof does not start a second one
+        expect(await conflicts(`A: [elapsed=1ms or (endof(B) and MAA:0{1s})] ${sub} ${post}\nB: [endof(A)] ${sub} ${post}`)).toEqual([]);
+        // no rule of the turn ever starts
+        expect(await conflicts(`A: [endof(B)] ${sub} ${post}\nB: [endof(A)] ${sub} ${post}`)).toEqual([]);
+
+        const warned = 'Input event port :2 (connection_status) is also subscribed to MAA:2 by rule A';
+        const cases: Array<[string, string]> = [
+            // B starts at 2 ms whatever A is doing: A (from 1 ms) may still be active
+            [`A: [elapsed=1ms or endof(B)] ${sub} ${post}\nB: [elapsed=2ms or endof(A)] ${sub} ${post}`,
+                'They may be active at once: B and A take turns on the endof of another rule, but 2 of their clauses start one otherwise, so one may start while another is active: A on elapsed=1ms, B on elapsed=2ms.'],
+            // A starts again on each MAA:0, while B may be active
+            [`A: [MAA:0 or endof(B)] ${sub} ${post}\nB: [endof(A)] ${sub} ${post}`,
+                'They may be active at once: B and A take turns on the endof of another rule, but A also starts on MAA:0, which may come again while another of their turn is active.'],
+            // the end of A starts B and C: both become active at once
+            [`A: [elapsed=1ms or endof(C)] compute doit("x", 1.0) ${post}\nB: [endof(A)] ${sub} ${post}\nC: [endof(A)] ${sub} ${post}`,
+                'They may be active at once: C and B take turns on the endof of another rule, but endof(A) starts 2 of them (B, C).']
+        ];
+        for (const [rules, why] of cases) {
+            const found = await conflicts(rules);
+            expect(found, rules).toHaveLength(1);
+            expect(found[0], rules).toContain(rules.includes('C: [endof(A)]') ? warned.replace('rule A', 'rule B') : warned);
+            expect(found[0], rules).toContain(why);
+        }
+    });
+
+    it('an alternation is no schema conflict (their activations never meet), and a turn that may hold two is not claimed certain', async () => {
+        const sc2 = { 'sc2.contract': 'periodic schema sc2(TypeA consigne) { realtime { PERIOD=10ms; CRITICAL_DELAY=10ms; } modules { MSC (consigne:0); MSD (); } scheduling graph { MSC -> MSD; } }',
+            'sched.contract': 'scheduler configuration { modules { MSA; MSB; MSC; MSD; } schemas { sc1; sc2; } }' };
+        const schemaConflicts = async (rules: string) => (await build(architecture({ ...sc2, 'sup.contract': supervisor(rules) })))
+            .diagnostics.filter((d) => d.code === 'supervisor-schema-conflict');
+        const a = 'activate schema sc1(consigne = temp_consigne)';
+        const b = 'activate schema sc2(consigne = temp_consigne)';
+        expect(await schemaConflicts(`A: [elapsed=1ms or endof(B)] ${a} [elapsed=5ms]\nB: [endof(A)] ${b} [duration(B)=1ms]`)).toEqual([]);
+        expect(await schemaConflicts(`A: [elapsed=1ms or endof(B)] ${a} [duration(A)=1ms]\nB: [elapsed=2ms or endof(A)] ${b} [duration(B)=1ms]`)).toEqual([]);
+    });
+
     it('an event reading the variables of two input ports it is delivered to is warned: an occurrence writes one', async () => {
         const ports = 'in :2 string connection_status; in :4 string status2; out :1 string failure_message_type;';
         const rules = (post: string) => `HOLD: [elapsed=1ms] subscribe MAA:2 =* :2 [elapsed=2ms]\nLAND: [endof(HOLD)] subscribe MAA:2 =* :4 [${post}]`;

@@ -8,3 +8,4 @@ export * from './constants.js';
 export * from './strings.js';
 export * from './event-in-port.js';
 export * from './rule-activity.js';
+export * from './clause-trigger.js';

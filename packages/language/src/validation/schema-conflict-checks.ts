@@ -34,13 +34,15 @@ function activationsOf(rule: Rule): Activation[] {
 
 function checkSchemaConflicts(fn: SupervisionFunction, accept: ValidationAcceptor): void {
     const links = activeTogether(fn);
+    const rules = rulesOf(fn);
+    const declared = new Map(rules.map((r, i) => [r, i]));
     const seen = new Set<Rule>();
-    for (const rule of rulesOf(fn)) {
+    for (const rule of rules) {
         if (seen.has(rule)) continue;
         const group = groupOf(rule, links);
         for (const r of group.keys()) seen.add(r);
-        // declaration order, each rule's actions in written order
-        const activations = rulesOf(fn).filter((r) => group.has(r)).flatMap(activationsOf);
+        // declaration order, each rule's actions in written order (sorting the group, not filtering every rule: linear in the rules)
+        const activations = [...group.keys()].sort((a, b) => (declared.get(a) ?? 0) - (declared.get(b) ?? 0)).flatMap(activationsOf);
         for (let k = 1; k < activations.length; k++) {
             const later = activations[k]!;
             for (const earlier of activations.slice(0, k)) {

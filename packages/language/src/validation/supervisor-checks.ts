@@ -116,14 +116,17 @@ function checkSubscribeConflicts(sup: Supervisor, accept: ValidationAcceptor): v
         if (!target || !key) continue;
         const rule = AstUtils.getContainerOfType(s, isRule);
         const before = earlier.get(target) ?? [];
-        const first = before.find((b) => !(rule && b.rule && overlap(rule)?.neverActiveTogether(rule, b.rule)));
+        const rules = rule && overlap(rule);
+        const first = before.find((b) => !(rule && b.rule && rules?.apart(rule, b.rule)));
         before.push({ key, rule });
         earlier.set(target, before);
         if (!first) continue;
+        const turns = rule && first.rule ? overlap(rule)?.whyTurnsOverlap(rule, first.rule) : undefined;
+        const when = turns ? ` They may be active at once: ${turns}.` : '';
         // the same producer twice is refused at run time too (`port :i already subscribed`): one subscription at a time
         report(accept, SupervisorCodes['supervisor-subscribe-conflict'], first.key === key
-            ? `Input event port :${target.index} (${target.name}) is also subscribed to ${key} by rule ${first.rule?.name ?? '?'}: an input port takes one subscribe at a time, the same producer's too (the second is refused while the first holds it: \`port :${target.index} already subscribed\`). Make sure these rules are never active at once, or subscribe once in a rule active whenever either needs the events.`
-            : `Input event port :${target.index} (${target.name}) is also subscribed to ${first.key} (rule ${first.rule?.name ?? '?'}): an input port has at most one producer at a time. Make sure these rules are never active at once, or use another input port for ${key}.`,
+            ? `Input event port :${target.index} (${target.name}) is also subscribed to ${key} by rule ${first.rule?.name ?? '?'}: an input port takes one subscribe at a time, the same producer's too (the second is refused while the first holds it: \`port :${target.index} already subscribed\`). Make sure these rules are never active at once, or subscribe once in a rule active whenever either needs the events.${when}`
+            : `Input event port :${target.index} (${target.name}) is also subscribed to ${first.key} (rule ${first.rule?.name ?? '?'}): an input port has at most one producer at a time. Make sure these rules are never active at once, or use another input port for ${key}.${when}`,
             { node: s, property: 'targetPort' });
     }
 }
