@@ -34,6 +34,8 @@ const benches = [
   { part: 'simulate', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/simulator'] },
   // the edit-build-run loop from the command line: no-op build vs check, one-module edit, cold folder, run overhead
   { part: 'cli', cmd: ['node', 'bench/cli-build-bench.mjs'] },
+  // `contract check` of a supervisor whose 300 and 1,000 rules form one endof chain, each subscribing to one port (about 30 s)
+  { part: 'check-rules', cmd: ['node', 'bench/cli-check-rules-bench.mjs'] },
   // the end of `contract run --trace` on generated logs of a 60 s run of 50 modules (810,000 records, 73 MiB): CPU of the settling pass, 3 passes (about 40 s)
   { part: 'trace-settle', cmd: ['npm', 'run', '-s', 'bench:trace-settle', '-w', 'packages/cli'] },
   // the Monitor panel fed a 1 kHz schema's trace at the real rate for 60 s (MONITOR_BENCH_SECONDS), then a 60 s recorded run replayed (about 100 s)
