@@ -4,7 +4,7 @@ import { architecture, supervisor } from './architecture-fixture.js';
 import { build } from './helpers.js';
 import { isSupervisor, type Model, type SupervisionFunction } from '../src/generated/ast.js';
 import { rulesOf } from '../src/model/blocks.js';
-import { RuleOverlap } from '../src/model/rule-activity.js';
+import { activationsBounded, activeAtMostOnce, RuleOverlap } from '../src/model/rule-activity.js';
 
 async function functionOf(rules: string): Promise<SupervisionFunction> {
     const built = await build(architecture({ 'sup.contract': supervisor(rules) }));
@@ -36,6 +36,16 @@ describe('RuleOverlap', () => {
         // CPU time, not wall time: the suite runs beside others at low priority. The walk per rule
         // pair this replaces took seconds here (every answer walked its after-set).
         expect((cpu.user + cpu.system) / 1000).toBeLessThan(1500);
+    });
+
+    it('a 2,000-rule chain: its last rule is active once at most, and only elapsed ending it is no warning (no recursion through the chain)', async () => {
+        const n = 2000;
+        const rules = Array.from({ length: n }, (_, i) => `R${i}: [${i === 0 ? 'elapsed=1ms' : `endof(R${i - 1})`}] compute doit("x", 1.0) [elapsed=${i + 2}ms]`).join('\n');
+        const built = await build(architecture({ 'sup.contract': supervisor(rules) }));
+        const fn = (built.docs.get('sup.contract')!.parseResult.value as Model).elements.find(isSupervisor)!.functions[0]!;
+        expect(activeAtMostOnce(rulesOf(fn)[n - 1]!)).toBe(true);
+        expect(activationsBounded(rulesOf(fn)[n - 1]!)).toBe(true);
+        expect(built.diagnostics.filter((d) => d.severity === 'error' || d.code === 'supervisor-elapsed-once')).toEqual([]);
     });
 
     it('a chain whose first rule recurs: no pair is known apart', async () => {

@@ -7,7 +7,8 @@
  * supervisor-schema-conflict (rules certainly active together: schema-conflicts.ts) and
  * supervisor-subscribe-conflict (rules that may be: all but those never active together).
  */
-import { isDurationEvent, isElapsedEvent, isEndofEvent, isStartedEvent, type Event, type Rule, type SupervisionFunction } from '../generated/ast.js';
+import { AstUtils } from 'langium';
+import { isDurationEvent, isElapsedEvent, isEndofEvent, isStartedEvent, isSupervisionFunction, type Event, type Rule, type SupervisionFunction } from '../generated/ast.js';
 import { rulesOf } from './blocks.js';
 import { RulesAfterEnd } from './rule-after-end.js';
 import { RuleTurns } from './rule-turns.js';
@@ -32,35 +33,34 @@ function transientRuleOf(e: Event): Rule | undefined {
  * `single`: once at most): each precondition clause (with `single`: its one clause) needs a
  * transient event that occurs a bounded number of times (once at most): an `elapsed=t`, or an
  * endof/started/duration of such a rule. A module event, a persistence, or a cycle of rules (R1 on
- * endof(R6), ..., R6 on endof(R5)) makes it recur. `seen`: the rules being decided.
+ * endof(R6), ..., R6 on endof(R5)) makes it recur. Decided for every rule of the function at once
+ * (limitedRules) and kept per function: a rule's events name rules of its own function only, so
+ * the answers hold as long as its syntax tree does.
  */
-function limitedActivations(rule: Rule, single: boolean, seen: Set<Rule>): boolean {
-    if (seen.has(rule)) return false; // a cycle: each turn makes it active again
-    seen.add(rule);
-    const limited = (e: Event): boolean => {
-        if (isElapsedEvent(e)) return !e.persistence;
-        const other = transientRuleOf(e);
-        return other !== undefined && limitedActivations(other, single, seen);
-    };
-    const clauses = rule.precondition?.clauses ?? [];
-    const result = clauses.length > 0 && (!single || clauses.length === 1) && clauses.every((c) => c.events.some(limited));
-    seen.delete(rule);
-    return result;
+function limitedActivations(rule: Rule, single: boolean): boolean {
+    const fn = AstUtils.getContainerOfType(rule, isSupervisionFunction);
+    if (!fn) return limitedRules([rule], single).has(rule);
+    let known = limitedByFunction.get(fn);
+    if (!known) limitedByFunction.set(fn, known = {});
+    const set = single ? (known.once ??= limitedRules(rulesOf(fn), true)) : (known.bounded ??= limitedRules(rulesOf(fn), false));
+    return set.has(rule);
 }
+
+const limitedByFunction = new WeakMap<SupervisionFunction, { once?: Set<Rule>; bounded?: Set<Rule> }>();
 
 /** `rule` becomes active a bounded number of times in a run of its function (`[elapsed=1ms or elapsed=5s]`: twice at most). */
 export function activationsBounded(rule: Rule): boolean {
-    return limitedActivations(rule, false, new Set());
+    return limitedActivations(rule, false);
 }
 
 /** `rule` becomes active once at most in a run of its function. */
 export function activeAtMostOnce(rule: Rule): boolean {
-    return limitedActivations(rule, true, new Set());
+    return limitedActivations(rule, true);
 }
 
 /**
  * The rules of `rules` that become active a bounded number of times (with `single`: once at most)
- * in a run of their function, as limitedActivations decides each, for all of them in one pass: the
+ * in a run of their function, for all of them in one pass: the
  * least set closed under its rule (a rule joins once each of its clauses, with `single` its one
  * clause, has an event that occurs a bounded number of times), grown from the `elapsed=t` clauses
  * through the rules whose clauses wait for the events of rules that joined.
@@ -124,7 +124,7 @@ export class RuleOverlap {
 
     constructor(fn: SupervisionFunction) {
         const rules = rulesOf(fn);
-        const once = limitedRules(rules, true);
+        const once = new Set(rules.filter(activeAtMostOnce));
         const afterEnd = new RulesAfterEnd(rules);
         const intervals = afterEnd.intervals();
         const occursOnce = (e: Event): boolean => {
