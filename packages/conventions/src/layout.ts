@@ -47,6 +47,12 @@ export const ORPHANS_HOLD = 'code moved aside, or lines this generator does not 
 /** The record of what the generator wrote, in its output folder (codegen's writer/manifest.ts): a `src-gen/` holding it is a tree ContrACT Studio generated. */
 export const MANIFEST_NAME = '.contract-manifest.json';
 
+/** The last generation's copy of the user code in the protected regions, in its output folder (codegen's region-copy.ts): a generated file deleted by hand gets it back. */
+export const REGION_COPY_NAME = '.contract-regions.json';
+
+/** Folder of the output folder where a generation moves user code it cannot place (codegen's orphans.ts). */
+export const ORPHANS_DIR = 'orphans';
+
 /** The write lock of a generated tree, in its output folder (codegen's tree-lock.ts); no listing of the tree shows it. */
 export const TREE_LOCK_NAME = '.contract-lock';
 

@@ -5,6 +5,7 @@
 import { posix } from 'node:path';
 import { regionAt, type ProtectedRegion } from './protected-regions.js';
 import { withMigrationHint } from './migration-hints.js';
+import type { OrphanedDefinitions } from './orphan-hints.js';
 
 /** One gcc problem, located in the job's tree (see docs/build-service-api.md). */
 export interface GccDiagnostic {
@@ -39,6 +40,8 @@ export interface DiagnosticContext {
    * a diagnostic in one of these files is told at the user's line (userCopyPlace).
    */
   userCopies?: ReadonlyMap<string, UserCopy>;
+  /** The functions defined only in the project's src-gen/orphans/ copies (orphan-hints.ts): a link error missing one names its copy. */
+  orphanedDefinitions?: OrphanedDefinitions;
 }
 
 /** The user's own copy of a file of the tree, when it is not the file built. */

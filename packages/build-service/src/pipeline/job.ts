@@ -446,6 +446,7 @@ export class Job {
         root: posix.join(work, treeRoot(this.request.kind)),
         regions: prep.regions,
         userCopies: prep.userCopies,
+        orphanedDefinitions: prep.orphanedDefinitions,
         ...(parallel ? { diagnosticsOnStdout: true } : {}),
       });
       ws.acceptedOutputs = null;

@@ -18,6 +18,7 @@
 import { SERVICE_BOUNDS } from '../limits.js';
 import { located, type DiagnosticContext, type GccDiagnostic } from './gcc-diagnostics.js';
 import { cutText, digitsEnd } from './gcc-text.js';
+import { withOrphanHint } from './orphan-hints.js';
 
 /** What one line of ld's output says. */
 export type LinkerLine =
@@ -60,13 +61,15 @@ export function place(loc: string): { file: string; line: number | null } | null
 
 function diagnosticAt(severity: GccDiagnostic['severity'], message: string, loc: string, ctx: DiagnosticContext): GccDiagnostic {
   const max = SERVICE_BOUNDS.diagnosticTextChars;
+  // a function defined only in an orphans copy of the project: where it went (orphan-hints.ts)
+  message = withOrphanHint(cutText(message, max), ctx.orphanedDefinitions);
   const p = place(loc);
   if (!p || p.line === null) {
     // no line (no debug info): the place as ld wrote it, in the message
     const where = p ? ` (in ${cutText(p.file, max)})` : '';
-    return { severity, message: `${cutText(message, max)}${where}`, file: null, line: null, column: null, protectedRegion: null, children: [] };
+    return { severity, message: `${message}${where}`, file: null, line: null, column: null, protectedRegion: null, children: [] };
   }
-  return located({ severity, message: cutText(message, max), line: p.line, column: null, children: [] }, cutText(p.file, max), ctx);
+  return located({ severity, message, line: p.line, column: null, children: [] }, cutText(p.file, max), ctx);
 }
 
 /**

@@ -7,6 +7,7 @@
 import { posix } from 'node:path';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { makeEnteringDirectory, makeLeavingDirectory, renderDiagnostic, type GccDiagnostic, type UserCopy } from './gcc-diagnostics.js';
+import type { OrphanedDefinitions } from './orphan-hints.js';
 import { errorsFirst, looksLikeGccJson, parseCutGccJsonLine, parseGccJsonLine, parseOverfullGccJsonLine } from './gcc-json.js';
 import { parseGccTextLine } from './gcc-text.js';
 import { LinkErrorReader, parseLinkerLine } from './ld-text.js';
@@ -26,6 +27,8 @@ export interface BuildRouterOptions {
   regions: ReadonlyMap<string, readonly ProtectedRegion[]>;
   /** The user's copies of the tree's files that are not the files built (DiagnosticContext.userCopies). */
   userCopies?: ReadonlyMap<string, UserCopy>;
+  /** The functions defined only in the project's orphans copies (DiagnosticContext.orphanedDefinitions). */
+  orphanedDefinitions?: OrphanedDefinitions;
   /** gcc's JSON diagnostics come on stdout too (a build whose stderr is merged into its stdout, 2>&1). */
   diagnosticsOnStdout?: boolean;
 }
@@ -53,7 +56,7 @@ export class BuildOutputRouter {
     const entering = makeEnteringDirectory(head);
     if (entering) this.dirs.push(posix.resolve(this.cwd, entering));
     else if (makeLeavingDirectory(head) && this.dirs.length > 1) this.dirs.pop();
-    const ctx = { cwd: this.cwd, root: this.options.root, regions: this.options.regions, ...(this.options.userCopies ? { userCopies: this.options.userCopies } : {}) };
+    const ctx = { cwd: this.cwd, root: this.options.root, regions: this.options.regions, ...(this.options.userCopies ? { userCopies: this.options.userCopies } : {}), ...(this.options.orphanedDefinitions ? { orphanedDefinitions: this.options.orphanedDefinitions } : {}) };
     if ((stream === 'stderr' || this.options.diagnosticsOnStdout) && looksLikeGccJson(line)) {
       const diags = parseGccJsonLine(line, ctx);
       // the log in gcc's order; the job's diagnostics errors first

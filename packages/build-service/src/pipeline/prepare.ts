@@ -13,12 +13,14 @@ import { generateProjectBounded } from './generate-worker.js';
 import { findProtectedRegions, type ProtectedRegion } from './protected-regions.js';
 import { dropStaleWorkSources } from './work-sources.js';
 import { foreignMakefiles, foreignMakefilesMessage } from './foreign-makefiles.js';
+import { orphanedDefinitions, type OrphanedDefinitions } from './orphan-hints.js';
 import type { UserCopy } from './gcc-diagnostics.js';
 import type { Workspace } from './workspaces.js';
 import { generatorIdentity, type GenerationCache } from '../cache/generation-cache.js';
 import { checkRelativePath, listFilesNoFollow, readFileHeadNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
 import { SRC_GEN_ARCHITECTURE_DIR, SRC_GEN_DIR, TREE_LOCK_NAME, architecturePath, projectRootsOf, unusedTreeWarning } from '@contract-studio/conventions';
 import { makefileExecutables } from '@contract-studio/codegen/run-executables';
+import { recordUserCode } from '@contract-studio/codegen/record-user-code';
 
 export type ProjectKind = 'cactal' | 'make';
 
@@ -54,6 +56,8 @@ export interface PrepareOutcome {
   synced: number;
   /** A Cactal project's executables, as its generated architecture Makefile names them (what `make run` starts); else null. */
   executables: string[] | null;
+  /** The functions defined in the project's src-gen/orphans/ copies (orphan-hints.ts): a link error missing one says where it went. */
+  orphanedDefinitions?: OrphanedDefinitions;
 }
 
 /** The folders a run writes its output to (LOG_DIR, RUN_DIR), anywhere in the project: never read. */
@@ -218,6 +222,12 @@ export async function prepareWorkspace(
 ): Promise<PrepareOutcome> {
   const stageProjectDir = join(ws.stageDir, 'project');
   await fsp.mkdir(stageProjectDir, { recursive: true, mode: 0o700 });
+  if (kind === 'cactal' && 'dir' in source) {
+    // the project's record of its user code (docs/codegen.md "A generated file deleted"): what this
+    // build generates goes to its private copy, so the project's own manifest learns here which
+    // regions hold code, and the copy of that code that brings a deleted generated file back
+    for (const w of recordUserCode(join(source.dir, SRC_GEN_DIR)).warnings) log(`warning: ${SRC_GEN_DIR}/${w}`);
+  }
   const { wanted, digest, warnings } = await readProject(source, kind);
   for (const w of warnings) log(w);
   if (kind === 'cactal') {
@@ -311,5 +321,5 @@ export async function prepareWorkspace(
   const dropped = await dropStaleWorkSources(ws.stageDir, ws.workDir, files.map((rel) => (root ? `${root}/${rel}` : rel)));
   await fsp.writeFile(digestFile, stamp);
   log(`work tree ready: ${files.length} file(s), ${synced} updated${dropped ? `, ${dropped} removed` : ''}${ws.reused ? ' (incremental)' : ''} in ${Date.now() - tCopy} ms`);
-  return { ok: true, problems, regions, userCopies, synced, executables };
+  return { ok: true, problems, regions, userCopies, synced, executables, ...(kind === 'cactal' ? { orphanedDefinitions: orphanedDefinitions(wanted) } : {}) };
 }

@@ -21,3 +21,5 @@ export {
 } from './rename-journal.js';
 export { carryRenameIntoTree, type TreeRename, type TreeCarryOver } from './carry-rename.js';
 export { runJournaledRename, RenameStepError, type RenameStep, type JournaledRenameOptions } from './journaled-rename.js';
+export { REGION_COPY_NAME, loadRegionCopy, type RegionBodies } from './region-copy.js';
+export { recordUserCode, userCodeOf, type UserCodeRecord } from './record-user-code.js';

@@ -3,8 +3,9 @@ import type { Region } from '../regions/parse-regions.js';
 import { bytesOf } from './byte-string.js';
 import type { OutputTree } from './output-tree.js';
 
-/** Folder (relative to the output folder) where orphaned user code goes. */
-export const ORPHANS_DIR = 'orphans';
+/** Folder (relative to the output folder) where orphaned user code goes (@contract-studio/conventions). */
+import { ORPHANS_DIR } from '@contract-studio/conventions';
+export { ORPHANS_DIR };
 
 /**
  * The n-th candidate name for the orphan of `path`: `orphans/<path>`, then

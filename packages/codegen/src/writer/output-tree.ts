@@ -4,7 +4,7 @@ import { syncFolder, writeFileAtomic } from './atomic-write.js';
 import { closeQuietly, fdPath, openDirNoFollow, requireProcFd } from './dir-fd.js';
 import { checkTreePath, checkTreeRoot, linkRefused, UnsafePathError } from './safe-paths.js';
 import { removeStaleTemps } from './stale-temp.js';
-import { lockTreeSync } from './tree-lock.js';
+import { lockTreeSync, tryTreeLock } from './tree-lock.js';
 
 /**
  * Opened folders kept per tree (least recently used closed first): a generation walks its files
@@ -59,6 +59,19 @@ export class OutputTree {
             // the folder removed or moved away since it was opened: said as every other write says it
             throw this.readable(e, fd, '');
         }
+    }
+
+    /**
+     * One try at the output folder's write lock (for a writer that must not wait: a build's record
+     * of the user code): true when taken (or already held by this process), false when another holds it.
+     */
+    tryLock(): boolean {
+        if (this.release) return true;
+        const fd = this.openRoot(true)!;
+        const taken = tryTreeLock(fdPath(fd));
+        if (typeof taken !== 'function') return false;
+        this.release = taken;
+        return true;
     }
 
     private release: (() => void) | undefined;

@@ -5,6 +5,7 @@
  * Shared by the IDE's rename refactoring and `contract rename`, so that both behave the same.
  * User code is handled as byte strings and kept byte for byte.
  */
+import { loadRegionCopy, writeRegionCopy } from './region-copy.js';
 import { readdirSync } from 'node:fs';
 import { join } from 'node:path';
 import { START_MARKER } from '../regions/markers.js';
@@ -256,6 +257,11 @@ function carryManifest(tree: OutputTree, loaded: ManifestLoad, { from, to, renam
         // line that differs instead
         const lines = followed ? carry.linesAfter : carry ? undefined : earlier ? earlier.lines : loaded.manifest.skeletonLines.get(path);
         if (lines !== undefined) lineTable.set(moved, lines);
+    }
+    // the copy of the regions' user code (region-copy.ts) follows: paths and region IDs
+    const copy = loadRegionCopy(tree, new Set(loaded.manifest.files.keys()));
+    if (!copy.problem && copy.bodies.size > 0) {
+        writeRegionCopy(tree, new Map([...copy.bodies].map(([path, bodies]) => [movePath(path), new Map([...bodies].map(([id, body]) => [renameId(id), body]))])));
     }
     // in the line-ending style of the manifest it replaces (a CRLF checkout's stays CRLF), as generate writes it
     tree.write(MANIFEST_NAME, Buffer.from(manifestTextLike(tree.read(MANIFEST_NAME), serialiseManifest(files, skeletons, lineTable, loaded.manifest.recordsUserCode ? userCode : undefined, lostUserCode)), 'utf8'));

@@ -5,6 +5,9 @@
  * that code, and how to get it back; a build says it too, as a warning (it does not fail). Every
  * later generation and build says it again (lostUserCode) until one of the regions holds code; a
  * manifest of an older version (no userCode) makes the first command say the file may have held code.
+ * With the copy of the regions' code (region-copy.ts, .contract-regions.json), the file is generated
+ * anew with that code restored instead; the tests of the warnings remove the copy first (a copy
+ * missing: the older behaviour).
  */
 import { cpSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
@@ -12,6 +15,7 @@ import { describe, expect, it } from 'vitest';
 import { region } from '../regions/markers.js';
 import { scratchDirs } from '../test-support/temp-dir.js';
 import { MANIFEST_NAME } from './manifest.js';
+import { REGION_COPY_NAME } from './region-copy.js';
 import { renameInGeneratedTree } from './rename-generated.js';
 import { writeTree, type GeneratedFile } from './write-tree.js';
 
@@ -26,13 +30,14 @@ const read = (dir: string, p: string) => readFileSync(join(dir, p), 'utf8');
 const userCode = (dir: string) => (JSON.parse(read(dir, MANIFEST_NAME)) as { userCode?: Record<string, string[]> }).userCode;
 const lostUserCode = (dir: string) => (JSON.parse(read(dir, MANIFEST_NAME)) as { lostUserCode?: Record<string, string[]> }).lostUserCode;
 
-/** A tree of NAV and LOC whose NAV exec region holds code, generated twice (the manifest records it). */
-function withCode(): string {
+/** A tree of NAV and LOC whose NAV exec region holds code, generated twice (the manifest records it); `keepCopy` false: without the copy of the regions' code. */
+function withCode(keepCopy = false): string {
     const dir = out();
     const tree = [module('LOC'), module('NAV')];
     writeTree(dir, tree);
     writeFileSync(join(dir, NAV), read(dir, NAV).replace(/(protect_exec_NAV\) ENABLED START\*\/)\n\/\/TODO\n/, '$1\nfollow_path();\n'));
     writeTree(dir, tree);
+    if (!keepCopy) rmSync(join(dir, REGION_COPY_NAME));
     return dir;
 }
 

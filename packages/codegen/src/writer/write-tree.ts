@@ -14,6 +14,7 @@ import { emptyReport, type GenerationReport } from './report.js';
 import { UnsafePathError } from './safe-paths.js';
 import { RENAME_JOURNAL_NAME, hasRenameJournal } from './rename-journal.js';
 import { conflictRefusal } from './conflicts.js';
+import { REGION_COPY_NAME, loadRegionCopy, regionBodies, writeRegionCopy, type RegionBodies } from './region-copy.js';
 
 /** One file the generators produced: path relative to the output folder ('/'-separated) and its text. */
 export interface GeneratedFile {
@@ -213,6 +214,17 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     const newUserCode = new Map<string, string[]>();
     /** path -> the IDs of its regions whose code a deletion lost, still said (Manifest.lostUserCode). */
     const newLostUserCode = new Map<string, string[]>();
+    // the last generation's copy of the regions' user code (region-copy.ts): a deleted file gets it back
+    const copy = loaded.manifest ? loadRegionCopy(tree, new Set(loaded.manifest.files.keys())) : { bodies: new Map() as RegionBodies };
+    if (copy.problem) {
+        report.warnings.push({ file: REGION_COPY_NAME, message: `${copy.problem}: no protected region of a deleted generated file can be restored from it (such a file is generated anew with the defaults, and said); written anew by this generation from the files as they are` });
+    }
+    /** path -> the contents of its regions holding user code after this generation (the copy written at the end). */
+    const newBodies: RegionBodies = new Map();
+    const recordBodies = (path: string, text: string, held: readonly string[]) => {
+        if (held.length > 0) newBodies.set(path, regionBodies(text, path, held));
+        else newBodies.delete(path);
+    };
     /**
      * A file whose regions' code a deletion lost (the manifest's lostUserCode) and that now holds
      * code in none of them (`heldNow`): said again, and kept in the record; one holding code there
@@ -249,6 +261,9 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         const lost = loaded.manifest?.lostUserCode.get(path);
         if (lost !== undefined) newLostUserCode.set(path, lost);
         else newLostUserCode.delete(path);
+        const bodies = copy.bodies.get(path);
+        if (bodies !== undefined) newBodies.set(path, bodies);
+        else newBodies.delete(path);
     };
     /** No manifest there at all (not an unreadable or older one): a tree of another version or tool, or one whose manifest was deleted. */
     const noManifestAtAll = !loaded.manifest && unreadable === undefined && !manifestRefused;
@@ -342,15 +357,26 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         try {
             let existing = readExisting(file.path);
             if (existing === undefined) {
-                const text = carriedIn ? fillRegions(generated, file.path, carriedIn) : generated;
-                const lost = deletedUserCode(tree, file.path, loaded.manifest, carriedIn);
+                let text = carriedIn ? fillRegions(generated, file.path, carriedIn) : generated;
+                // a file deleted by hand whose regions held code: that code back from the copy
+                const restored = restorableBodies(copy.bodies.get(file.path), record.defaults, carriedIn);
+                if (restored.size > 0) {
+                    text = fillRegions(text, file.path, restored);
+                    report.warnings.push({ file: file.path, message: restoredMessage(file.path, [...restored.keys()]) });
+                }
+                // a manifest of an older version with a copy of this one: the copy tells what held code
+                const lost = restored.size > 0 && !loaded.manifest?.recordsUserCode ? undefined : deletedUserCode(tree, file.path, loaded.manifest, new Map([...(carriedIn ?? []), ...restored]));
                 if (lost) {
                     report.warnings.push({ file: file.path, message: lost.message });
                     newLostUserCode.set(file.path, lost.regions);
                 }
                 tree.write(file.path, bytesOf(text));
                 onDisk.set(file.path, text);
-                if (carriedIn) newUserCode.set(file.path, regionsHoldingCode(text, file.path, record.defaults));
+                if (carriedIn || restored.size > 0) {
+                    const held = regionsHoldingCode(text, file.path, record.defaults);
+                    newUserCode.set(file.path, held);
+                    recordBodies(file.path, text, held);
+                }
                 report.created.push(file.path);
                 report.filesWritten++;
                 continue;
@@ -483,6 +509,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             newManifest.set(file.path, defaults);
             const held = merged.text === generated ? [] : regionsHoldingCode(merged.text, file.path, defaults);
             if (held.length > 0) newUserCode.set(file.path, held);
+            recordBodies(file.path, merged.text, held);
             sayStillLost(file.path, held);
             if (merged.text === original) {
                 report.unchanged.push(file.path);
@@ -562,6 +589,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                 tree.write(MANIFEST_NAME, Buffer.from(manifestText, 'utf8'));
                 report.filesWritten++;
             }
+            if (writeRegionCopy(tree, newBodies)) report.filesWritten++;
         } catch (e) {
             if (e instanceof UnsafePathError) refusals.add(MANIFEST_NAME, e);
             else report.errors.push({ file: MANIFEST_NAME, message: `cannot write the manifest: ${(e as Error).message}` });
@@ -613,6 +641,24 @@ function deletedUserCode(tree: OutputTree, path: string, manifest: LoadedManifes
         regions: unknown,
         message: `was not there (deleted?), and the manifest, written by an older version of ContrACT Studio, does not record whether its protected region(s) ${unknown.join(', ')} held code: generated anew with the defaults. If they held code, ${restore}${copy}; if not, write anything (a comment) in one of them to stop this warning`,
     };
+}
+
+/**
+ * The contents of the copy (`saved`, a file's) that a file generated anew takes back: those of
+ * regions the generator still writes in it (`defaults`), that hold no default, but those carried
+ * in from another file (`carriedIn`).
+ */
+function restorableBodies(saved: ReadonlyMap<string, string> | undefined, defaults: Record<string, string>, carriedIn: ReadonlyMap<string, string> | undefined): Map<string, string> {
+    const out = new Map<string, string>();
+    for (const [id, body] of saved ?? []) {
+        if (defaults[id] !== undefined && defaults[id] !== hashContent(body) && !carriedIn?.has(id)) out.set(id, body);
+    }
+    return out;
+}
+
+/** What to say of generated file `path`, deleted, generated anew with regions `ids` restored from the copy. */
+function restoredMessage(path: string, ids: readonly string[]): string {
+    return `was not there (deleted?): restored ${ids.length} protected region(s) of ${SRC_GEN_DIR}/${path} (${ids.join(', ')}) from the last generation's copy (${SRC_GEN_DIR}/${REGION_COPY_NAME}), as they were when it was last generated or built; check them`;
 }
 
 /** What to say of generated file `path` whose regions `lost` (Manifest.lostUserCode) still hold only their defaults. */
