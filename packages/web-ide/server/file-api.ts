@@ -11,6 +11,7 @@ import { WorkspaceFs } from './workspace-fs.js';
 import { FileLocks } from './file-locks.js';
 import { baseVersionOf, fileVersion } from './file-version.js';
 import { undecodableLine } from './undecodable.js';
+import { generatedUserCode } from './generated-files.js';
 
 /** A workspace file the editor opens, saves or creates: 8 MiB at most (GET and PUT /api/file, POST /api/create). */
 const MAX_FILE_BYTES = 8 * 1024 * 1024;
@@ -33,6 +34,8 @@ const { O_WRONLY, O_CREAT, O_EXCL, O_NOFOLLOW } = constants;
  *   POST   /api/create  {path, type}      -> 201 {path}        (409 if it exists)
  *   POST   /api/rename  {from, to}        -> {from, to}        (409 if `to` exists)
  *   DELETE /api/file?path=P               -> {path}            (files and folders)
+ *   GET    /api/user-code?path=P          -> {regions, restorable}   a generated file's protected regions holding user code
+ *          (recorded first, as a build records them), and whether the next generation restores them if it is deleted
  * Returns false when the request is not for this API.
  */
 export async function handleFileApi(
@@ -108,6 +111,11 @@ export async function handleFileApi(
         }),
       );
       sendJson(res, 200, { from, to });
+      return true;
+    }
+    case 'GET /api/user-code': {
+      const rel = paths.entry(url.searchParams.get('path'));
+      sendJson(res, 200, await treeLock.run(() => generatedUserCode(paths.root, rel)));
       return true;
     }
     case 'DELETE /api/file': {

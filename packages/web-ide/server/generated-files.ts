@@ -1,5 +1,5 @@
 import { join } from 'node:path';
-import { loadTreeChecks } from './integrations.js';
+import { importWith, loadTreeChecks, type CodegenApi } from './integrations.js';
 import { SRC_GEN_DIR } from '@contract-studio/conventions';
 
 const GENERATED_PATH = new RegExp(`^(?:(.*)/)?${SRC_GEN_DIR}/(generated/.+)$`);
@@ -25,6 +25,18 @@ export async function isGeneratedFile(root: string, relPath: string, diskText: s
   const listed = await manifestFiles(join(root, ...parts.srcGen.split('/')));
   if (listed) return listed.has(parts.inTree);
   return diskText !== undefined && diskText.includes('PROTECTED REGION');
+}
+
+/**
+ * The protected regions of generated file `relPath` (workspace-relative) that hold user code, after
+ * its tree's record of that code is brought up to date (codegen's userCodeOf), and whether the next
+ * generation restores them if the file is deleted (`restorable`); none for any other file.
+ */
+export async function generatedUserCode(root: string, relPath: string): Promise<{ regions: string[]; restorable: boolean }> {
+  const parts = splitGeneratedPath(relPath);
+  if (!parts) return { regions: [], restorable: false };
+  const codegen = await importWith<CodegenApi, 'userCodeOf'>('@contract-studio/codegen', ['userCodeOf']);
+  return codegen.userCodeOf(join(root, ...parts.srcGen.split('/')), parts.inTree);
 }
 
 /**

@@ -10,7 +10,7 @@ import type { RegionParser } from './region-guard.js';
 import { HttpError } from './http-error.js';
 
 type LanguageNodeApi = typeof import('@contract-studio/language/node');
-type CodegenApi = typeof import('@contract-studio/codegen');
+export type CodegenApi = typeof import('@contract-studio/codegen');
 type FinishedRenameDescription = import('@contract-studio/codegen').FinishedRenameDescription;
 type BuildServiceApi = typeof import('@contract-studio/build-service');
 
@@ -25,7 +25,7 @@ async function importPackage<T>(name: string): Promise<T> {
 }
 
 /** The package, checked to export `names` as functions (a stale build of it may lack newer ones). */
-async function importWith<T, K extends keyof T>(name: string, names: readonly K[]): Promise<Pick<T, K>> {
+export async function importWith<T, K extends keyof T>(name: string, names: readonly K[]): Promise<Pick<T, K>> {
   const mod = await importPackage<Partial<T>>(name);
   const missing = names.filter((n) => typeof mod[n] !== 'function');
   if (missing.length) throw new HttpError(503, `${name} does not export ${missing.join('/')}; run \`npm run build\` at the repository root`);

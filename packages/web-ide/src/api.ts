@@ -199,6 +199,8 @@ export const api = {
   create: (path: string, type: 'file' | 'dir', content = '') => call<{ path: string }>('POST', '/api/create', { path, type, content }),
   rename: (from: string, to: string) => call<{ from: string; to: string }>('POST', '/api/rename', { from, to }),
   remove: (path: string) => call<{ path: string }>('DELETE', `/api/file?path=${q(path)}`),
+  /** A generated file's protected regions holding user code, and whether the next generation restores them if it is deleted. */
+  userCode: (path: string) => call<{ regions: string[]; restorable: boolean }>('GET', `/api/user-code?path=${q(path)}`),
   newProject: (folder: string) => call<{ folder: string; files: string[] }>('POST', '/api/new-project', { folder }),
   generate: (project: string) => call<GenerateReport>('POST', '/api/generate', { project }),
   renameEntity: (project: string, from: string, to: string, what: { kind?: string; owner?: string; members?: string[]; files?: Array<{ path: string; text: string; base: string }> } = {}) =>
