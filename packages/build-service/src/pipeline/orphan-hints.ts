@@ -18,7 +18,7 @@ const MAX_LINE_CHARS = 500;
 const MAX_NAMES = 10_000;
 const NOT_FUNCTIONS = new Set(['if', 'for', 'while', 'switch', 'return', 'sizeof', 'do', 'else']);
 /** `static inline double clamp(double v, double lo, double hi) {` or its `{` on the next line. */
-const DEFINITION = /^[ \t]*(?:[A-Za-z_]\w*[ \t*]+)+([A-Za-z_]\w*)[ \t]*\([^;{}()]*\)[ \t]*(\{)?[ \t]*(?:\/\/.*|\/\*.*)?$/;
+const DEFINITION = /^[ \t]*(?:[A-Za-z_]\w*[ \t*]+)+([A-Za-z_]\w*)[ \t]*\([^;{}()]*\)[ \t]*(\{.*|\/\/.*|\/\*.*)?$/;
 
 /** The functions defined in the C files of `files` (project-relative path -> bytes) under src-gen/orphans/. */
 export function orphanedDefinitions(files: ReadonlyMap<string, Buffer>): Map<string, string[]> {
@@ -32,7 +32,7 @@ export function orphanedDefinitions(files: ReadonlyMap<string, Buffer>): Map<str
       if (line.length > MAX_LINE_CHARS) continue;
       const m = DEFINITION.exec(line);
       if (!m || NOT_FUNCTIONS.has(m[1]!)) continue;
-      if (!m[2] && !(lines[i + 1] ?? '').trimStart().startsWith('{')) continue;
+      if (!m[2]?.startsWith('{') && !(lines[i + 1] ?? '').trimStart().startsWith('{')) continue;
       const at = found.get(m[1]!);
       if (at) {
         if (!at.includes(rel)) at.push(rel);

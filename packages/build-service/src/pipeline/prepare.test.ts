@@ -260,7 +260,7 @@ describe('prepareWorkspace on a project folder: what of it is read', () => {
     expect(existsSync(join(ws.stageDir, 'project/src-gen/.contract-rename.json'))).toBe(false);
   }, 120_000);
 
-  it('mirrors the files the user deleted from src-gen/: a module.c deleted to start afresh is generated with its defaults (a warning says its regions held code), not built from the stale copy; a deleted header leaves work/ while the build products stay', async () => {
+  it('mirrors the files the user deleted from src-gen/: a deleted module.c whose regions held code is generated with that code restored from the project\'s copy (said); deleted with the copy too, with its defaults (a warning says its regions held code), never built from the stale copy in work/; a deleted header leaves work/ while the build products stay', async () => {
     const dir = project();
     const ws = workspace();
     const prepareIn = async () => {
@@ -279,15 +279,20 @@ describe('prepareWorkspace on a project folder: what of it is read', () => {
     writeFileSync(join(ws.workDir, product), 'object');
     rmSync(join(dir, MSC_C));
     rmSync(join(dir, helper));
+    const restored = await prepareIn();
+    expect(readFileSync(join(ws.workDir, MSC_C), 'utf8')).toContain("the user's marker");
+    expect(restored).toContainEqual(expect.stringMatching(/^src-gen\/generated\/architecture\/modules\/MSC_mod\/module\.c: warning: was not there \(deleted\?\): restored \d+ protected region\(s\) of src-gen\/generated\/architecture\/modules\/MSC_mod\/module\.c \(.*protect_init_MSC.*\) from the last generation's copy/));
+    expect(existsSync(join(dir, MSC_C))).toBe(false); // the project's file comes back at its next generate
+    expect(existsSync(join(ws.stageDir, 'project', helper))).toBe(false);
+    expect(existsSync(join(ws.workDir, helper))).toBe(false);
+    expect(readFileSync(join(ws.workDir, product), 'utf8')).toBe('object');
+    // deleted with the copy: generated with its defaults, said
+    rmSync(join(dir, 'src-gen/.contract-regions.json'));
     const log = await prepareIn();
     expect(readFileSync(join(ws.workDir, MSC_C), 'utf8')).not.toContain("the user's marker");
     // its regions held code (the project's manifest records which): said, not refused
     expect(log).toContainEqual(expect.stringMatching(/^src-gen\/generated\/architecture\/modules\/MSC_mod\/module\.c: warning: was not there \(deleted\?\), though its protected region\(s\) .*protect_init_MSC.* held code when it was last generated: .*`git checkout -- src-gen\/generated\/architecture\/modules\/MSC_mod\/module\.c`/));
-    expect(existsSync(join(ws.stageDir, 'project', helper))).toBe(false);
-    expect(existsSync(join(ws.workDir, helper))).toBe(false);
     expect(readFileSync(join(ws.workDir, product), 'utf8')).toBe('object');
-    // (the module.c, and the manifest: it no longer records code in MSC's regions)
-    expect(log).toContainEqual(expect.stringMatching(/^work tree ready: \d+ file\(s\), 2 updated, 1 removed /));
   }, 120_000);
 
   it('refuses a folder without a .contract file, and one whose project is in a sub-folder with its own src-gen/ (built from there, the user\'s code would be left out)', async () => {

@@ -10,7 +10,7 @@ import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { openIde, shot, startSession, type Session } from './harness.js';
 
-const canGenerate = await import('@contract-studio/codegen').then((m) => typeof (m as Record<string, unknown>).userCodeOf === 'function').catch(() => false);
+const canGenerate = await import('@contract-studio/codegen').then((m) => typeof (m as Record<string, unknown>).generateArchitecture === 'function').catch(() => false);
 const MAA = 'src-gen/generated/architecture/modules/MAA_mod/module.c';
 const LAB = '/* lab code written after the last generation */';
 
