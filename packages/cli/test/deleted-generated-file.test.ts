@@ -2,7 +2,7 @@
  * The lab field test's defects (docs/codegen.md "A generated file deleted", "Orphans"), with real
  * gcc, make and ld in the bwrap sandbox:
  * - generate once, write code in protect_exec_CTL, build (never generate again), delete
- *   CTL's module.c: the build, then generate, bring that code back from the last generation's copy
+ *   CTL's module.c: the build, the run, then generate, bring that code back from the last generation's copy
  *   (src-gen/.contract-regions.json) and say so; they were silent and generated the defaults;
  * - a copy spoiled: generate says so and that the deleted file's code is lost (the build recorded it);
  * - a helper function written outside the regions, moved to src-gen/orphans/ by generate: the
@@ -36,7 +36,7 @@ async function labProject(name: string): Promise<string> {
 }
 
 describe('a generated file deleted after code was written and built (never generated again)', () => {
-    it('the build records the code; after the deletion the build and generate restore it from the copy and say so', async () => {
+    it('the build records the code; after the deletion the build, the run and generate restore it from the copy and say so', async () => {
         const dir = await labProject('lab');
         const built = capture(root);
         expect(await runCli(['build', 'lab'], built)).toBe(0);
@@ -48,6 +48,9 @@ describe('a generated file deleted after code was written and built (never gener
         expect(await runCli(['build', 'lab'], rebuilt)).toBe(0);
         expect(rebuilt.stderr + rebuilt.stdout).toMatch(restored);
         expect(existsSync(join(dir, CTL))).toBe(false); // a build writes no generated file of the project
+        const ran = capture(root);
+        expect(await runCli(['run', 'lab', '--duration', '2s'], ran)).toBe(0);
+        expect(ran.stderr + ran.stdout).toMatch(restored);
         const generated = capture(root);
         expect(await runCli(['generate', 'lab'], generated)).toBe(0);
         expect(generated.stderr + generated.stdout).toMatch(restored);

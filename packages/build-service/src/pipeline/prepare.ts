@@ -171,6 +171,16 @@ async function stageProject(wanted: Map<string, Buffer>, stageProjectDir: string
   for (const [rel, data] of wanted) await syncFileNoFollow(stageProjectDir, rel, data);
 }
 
+/** The warnings a staged tree's generation gave (the service's own file in stage/), [] when none can be read. */
+async function readStagedWarnings(file: string): Promise<CactalProblem[]> {
+  try {
+    const data = JSON.parse(await fsp.readFile(file, 'utf8')) as unknown;
+    return Array.isArray(data) ? data.filter((p): p is CactalProblem => typeof p === 'object' && p !== null && typeof (p as CactalProblem).message === 'string' && (p as CactalProblem).severity === 'warning' && typeof (p as CactalProblem).file === 'string') : [];
+  } catch {
+    return [];
+  }
+}
+
 /**
  * Where a prepare problem is, from the project folder, as the log says it: the model's at its
  * `.contract` file, line and column; the generator's (relative to src-gen) at `src-gen/FILE` and
@@ -246,9 +256,16 @@ export async function prepareWorkspace(
   // runtime); a stamp of an older version (the digest alone) never matches
   const stamp = kind === 'cactal' ? `${digest} generator=${generatorIdentity()}` : digest;
   let problems: CactalProblem[] = [];
+  // the warnings of the generation that made the staged tree: said again when it is reused, so that
+  // no build is silent about them (a deleted file restored or lost: docs/codegen.md "A generated file deleted")
+  const warningsFile = join(ws.stageDir, 'generation-warnings.json');
   if (previous === stamp) {
     // same inputs as the last successful prepare of this workspace: the staged tree is current
     log('project unchanged since the last build: generation skipped');
+    if (kind === 'cactal') {
+      problems = await readStagedWarnings(warningsFile);
+      for (const p of problems) log(`${problemAt(p)}: ${p.severity}: ${p.message}`);
+    }
   } else if (kind === 'cactal') {
     await fsp.rm(digestFile, { force: true });
     const stageGen = join(stageProjectDir, SRC_GEN_DIR);
@@ -285,6 +302,7 @@ export async function prepareWorkspace(
       return { ok: false, problems, regions: new Map(), userCopies: new Map(), synced: 0, executables: null };
     }
     log(`generated src-gen/ (${outcome.written} file(s) written, ${outcome.unchanged} unchanged) in ${Date.now() - t0} ms`);
+    await fsp.writeFile(warningsFile, JSON.stringify(problems.filter((p) => p.severity === 'warning')));
   } else {
     await fsp.rm(digestFile, { force: true });
     await stageProject(wanted, stageProjectDir);

@@ -3,7 +3,8 @@
  * a generated file"). The code was written after the last generation (on disk, as an editor or a
  * terminal would): the explorer's delete, by keyboard, says how many regions hold code, which, and
  * that the next generation restores them; Escape keeps the file; Enter deletes it; Generate All
- * brings the code back. The confirmation said only "The file will be deleted from disk." before.
+ * brings the code back (GET /api/user-code: nothing for another file, a path leaving the workspace
+ * refused). The confirmation said only "The file will be deleted from disk." before.
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { existsSync, readFileSync, writeFileSync } from 'node:fs';
@@ -62,5 +63,9 @@ describe.skipIf(!canGenerate)('the explorer\'s delete of a generated file holdin
     expect(report.created).toContain('generated/architecture/modules/MAA_mod/module.c');
     expect(report.warnings.map((w) => w.message).join('\n')).toMatch(/restored \d+ protected region\(s\) of src-gen\/generated\/architecture\/modules\/MAA_mod\/module\.c/);
     expect(readFileSync(file, 'utf8')).toContain(LAB);
+    // the route answers nothing for a file that is not generated, and refuses a path leaving the workspace
+    const ask = (path: string) => fetch(`${s.server.url}/api/user-code?path=${encodeURIComponent(path)}`, { headers: { 'x-contract-token': s.server.token } });
+    expect(await (await ask('amodule1.contract')).json()).toEqual({ regions: [], restorable: false });
+    expect((await ask('../../etc/passwd')).status).toBeGreaterThanOrEqual(400);
   }, 120_000);
 });
