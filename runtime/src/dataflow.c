@@ -66,6 +66,42 @@ void rt_dataflow_teardown(void)
     g_rt.data_subs = NULL;
 }
 
+/* A value from `producer` on input entry i: a producer change is recorded (`producer_changed`,
+ * a fact: a new schema's data flow took over the port); it is a wiring fault, warned on stderr,
+ * only when two producers interleave: a producer delivers a single value between two of the
+ * other's (A A B A), twice within CONTRACT_INTERLEAVE_NS. A schema switch hands the port over for
+ * at least a cycle of the new schema, and back only after the supervisor saw an event: its
+ * producers deliver runs of values. */
+static void note_producer(int i, const char *producer, size_t payload, RTIME now)
+{
+    InPortFeed *f = &g_rt.in_producer[i];
+    if (strcmp(f->producer, producer) == 0) {
+        f->values++;
+        return;
+    }
+    if (f->producer[0]) {
+        int single = strcmp(f->previous, producer) == 0 && f->values == 1;
+        int interleaved = single && f->single_at && now - f->single_at < CONTRACT_INTERLEAVE_NS;
+        if (single) f->single_at = now;
+        char detail[3 * CONTRACT_NAME_MAX + 160];
+        if (interleaved)
+            snprintf(detail, sizeof detail,
+                     "was %s: interleaved: %s and %s both feed this port (each gave a single value between two of the other's within 1 s): an input data port has one producer",
+                     f->producer, f->producer, producer);
+        else
+            snprintf(detail, sizeof detail, "was %s: a new producer (a schema switch)", f->producer);
+        if (interleaved && !f->interleave_said) {
+            fprintf(stderr, "%s: warning: input data port %d is fed by %s and %s at once (each delivered single values between the other's: an input data port has one producer)\n",
+                    g_rt.name, g_rt.iuse[i].Port, f->producer, producer);
+            f->interleave_said = 1;
+        }
+        ContractLog("producer_changed", producer, g_rt.iuse[i].Port, payload, detail);
+        memcpy(f->previous, f->producer, CONTRACT_NAME_MAX);
+    }
+    memcpy(f->producer, producer, CONTRACT_NAME_MAX);
+    f->values = 1;
+}
+
 /* Reads pending values of input entry i. latest: all of them (var gets the newest), else one.
  * purge: drop them without touching var. Returns values taken, -1 on error. */
 static int read_port(int i, void *var, RTIME *prod, RTIME *recv, int latest, int purge)
@@ -100,16 +136,7 @@ static int read_port(int i, void *var, RTIME *prod, RTIME *recv, int latest, int
             continue;
         }
         got++;
-        if (strcmp(g_rt.in_producer[i], h.producer) != 0) {
-            if (g_rt.in_producer[i][0]) {
-                /* an input port has one producer: a second one means a wiring error (or a new schema) */
-                char detail[CONTRACT_NAME_MAX + 64];
-                snprintf(detail, sizeof detail, "was %s: an input data port has one producer", g_rt.in_producer[i]);
-                fprintf(stderr, "%s: warning: input data port %d now fed by %s (%s)\n", g_rt.name, u->Port, h.producer, detail);
-                ContractLog("producer_changed", h.producer, u->Port, payload, detail);
-            }
-            memcpy(g_rt.in_producer[i], h.producer, CONTRACT_NAME_MAX);
-        }
+        note_producer(i, h.producer, payload, now);
         if (purge) { ContractLog("data_purged", h.producer, u->Port, payload, ""); continue; }
         memcpy(var, g_rt.scratch, u->Size);
         if (prod) *prod = h.production;

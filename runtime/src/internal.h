@@ -37,6 +37,19 @@ typedef struct Subscriber {
     RTIME wait_ns, wait_max_ns, wait_since;
 } Subscriber;
 
+/* Who feeds an input data port (dataflow.c): its producer now, the one before it, how many values
+   the producer now delivered since it took over, and when one last delivered a single value
+   between two of the other's: twice within CONTRACT_INTERLEAVE_NS is two producers feeding the
+   port at once (docs/runtime-api.md "One producer per input data port"). */
+#define CONTRACT_INTERLEAVE_NS 1000000000LL
+typedef struct InPortFeed {
+    char producer[CONTRACT_NAME_MAX];
+    char previous[CONTRACT_NAME_MAX];
+    unsigned long values; /* values of `producer` since it took over the port */
+    RTIME single_at;      /* when a producer last delivered one value between two of the other's (0: never) */
+    int interleave_said;  /* the stderr warning was printed for this port */
+} InPortFeed;
+
 typedef struct Pending { struct Pending *next; int ctl; RequestMessage msg; } Pending; /* ctl: came by the control channel */
 
 typedef struct {
@@ -52,7 +65,7 @@ typedef struct {
     size_t *param_in; size_t *param_out;
     int n_iuse, n_iproduce, n_ireact, n_idetect;
     int *in_fds;            /* one per IUSE entry */
-    char (*in_producer)[CONTRACT_NAME_MAX]; /* last producer seen on each input port */
+    InPortFeed *in_producer; /* who feeds each input port: its producer, the one before, the changes */
     unsigned char *scratch; /* receive buffer for data, CONTRACT_DATA_PORT_MAX + 1 */
     Subscriber **data_subs; /* per IPRODUCE entry */
     Subscriber **event_subs;/* per IDETECT entry */

@@ -303,7 +303,52 @@ void test_malformed_datagrams(void)
     CHECK(log && strstr(log, "dropped a malformed datagram of 20000 bytes"));
     CHECK(log && strstr(log, "does not match its header"));
     CHECK(log && strstr(log, "input data port 0: refused 32 bytes from X"));
-    CHECK(log && strstr(log, ",C1,producer_changed,Y,0,8,was X: an input data port has one producer"));
+    CHECK(log && strstr(log, ",C1,producer_changed,Y,0,8,was X: a new producer (a schema switch)"));
+    free(log);
+    h_teardown();
+}
+
+/* One value of `producer` into C1's input data port 0. */
+static int feed_c1(const char *producer, long value)
+{
+    WirePrefix dpre = { WIRE_MAGIC, WIRE_DATA };
+    struct { DataHeader h; long v; } ok;
+    memset(&ok, 0, sizeof ok);
+    ok.h.size = sizeof ok.v;
+    snprintf(ok.h.producer, sizeof ok.h.producer, "%s", producer);
+    ok.v = value;
+    return send_raw("C1.0.in", &dpre, sizeof dpre, &ok, sizeof ok);
+}
+
+void test_producer_change_and_interleave(void)
+{
+    REQUIRE(h_setup("producers") == 0);
+    RequestMessage *m = h_msg();
+    REQUIRE(h_spawn_module("C1", "C1") > 0);
+    CHECK(set_param("C1", 4, 0));
+    long v[8];
+    /* a schema switch (X's flow replaced by Y's) and one back at once: runs of values, facts, no warning */
+    CHECK(feed_c1("X", 1) && feed_c1("X", 2) && feed_c1("Y", 3) && feed_c1("Y", 4) && feed_c1("X", 5) && feed_c1("X", 6));
+    CHECK(report_values("C1", v, 8) == 6 && v[5] == 6);
+    char out[1024];
+    snprintf(out, sizeof out, "%s/C1.out", h_work_dir);
+    char *said = h_read_file(out);
+    CHECK(!said || !strstr(said, "warning: input data port"));
+    free(said);
+    /* X and Y feeding the port at once: single values between the other's, twice within a second: warned once */
+    CHECK(feed_c1("Y", 7) && feed_c1("X", 8) && feed_c1("Y", 9) && feed_c1("X", 10));
+    CHECK(report_values("C1", v, 8) == 4 && v[3] == 10);
+    CHECK(SendKill("C1", ACK_KILLED, 1) == 0 && h_wait_ack("C1", 1, ACK_KILLED, 2000, m));
+    usleep(100000);
+    char *log = h_read_logs("C1_");
+    CHECK(log && strstr(log, ",C1,producer_changed,Y,0,8,was X: a new producer (a schema switch)"));
+    CHECK(log && strstr(log, ",C1,producer_changed,X,0,8,was Y: a new producer (a schema switch)"));
+    CHECK(log && strstr(log, ",C1,producer_changed,Y,0,8,was X: interleaved: X and Y both feed this port"));
+    CHECK(log && strstr(log, ",C1,producer_changed,X,0,8,was Y: interleaved: Y and X both feed this port"));
+    said = h_read_file(out);
+    CHECK(said && strstr(said, "C1: warning: input data port 0 is fed by X and Y at once"));
+    CHECK(said && !strstr(strstr(said, "is fed by") + 1, "is fed by"));
+    free(said);
     free(log);
     h_teardown();
 }

@@ -13,6 +13,7 @@ void test_data_periodicity(void);
 void test_event_oneshot_continuous(void);
 void test_setparam_sizes(void);
 void test_malformed_datagrams(void);
+void test_producer_change_and_interleave(void);
 void test_unknown_and_stale(void);
 void test_request_to_gone_while_stopping(void);
 void test_peer_gone_at_stop(void);
@@ -72,6 +73,7 @@ static const TestCase ALL_TESTS[] = {
     { "event_oneshot_continuous", test_event_oneshot_continuous },
     { "setparam_sizes", test_setparam_sizes },
     { "malformed_datagrams", test_malformed_datagrams },
+    { "producer_change_and_interleave", test_producer_change_and_interleave },
     { "unknown_and_stale", test_unknown_and_stale },
     { "request_to_gone_while_stopping", test_request_to_gone_while_stopping },
     { "peer_gone_at_stop", test_peer_gone_at_stop },

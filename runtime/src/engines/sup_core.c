@@ -112,6 +112,8 @@ struct SupCore {
     int64_t now;
     uint64_t seq;
     uint64_t processed;
+    /* rule changes reported so far (report_rule): what a module event changed, for its record */
+    uint64_t rule_changes;
     FnState *fns;
     unsigned char **in_vals;
     unsigned char **out_vals;
@@ -640,6 +642,7 @@ static void format_cause(const SupCore *c, int f, char *buf, size_t len) {
 }
 
 static void report_rule(SupCore *c, int f, int r, int active) {
+    c->rule_changes++;
     if (!c->io.rule) return;
     char cause[300];
     format_cause(c, f, cause, sizeof cause);
@@ -894,9 +897,10 @@ int sup_core_next_deadline(const SupCore *c, int64_t *deadline) {
     return found;
 }
 
-void sup_core_module_event(SupCore *c, int64_t t, const char *module, int src_port, int in_port,
-                           const void *data, size_t size) {
+int sup_core_module_event(SupCore *c, int64_t t, const char *module, int src_port, int in_port,
+                          const void *data, size_t size) {
     sup_core_advance(c, t);
+    const uint64_t changes_before = c->rule_changes;
     int pi = -1;
     if (in_port >= 0) {
         pi = in_port_index(c->v, in_port);
@@ -911,7 +915,7 @@ void sup_core_module_event(SupCore *c, int64_t t, const char *module, int src_po
     if (pi < 0 || !c->subs[pi].active || c->subs[pi].src_port != src_port ||
         strcmp(c->subs[pi].module, module) != 0) {
         trace(c, "ignored: event %s:%d (no active subscription)", module, src_port);
-        return;
+        return 0;
     }
     if (c->subs[pi].mode == CONTRACT_ONESHOT) c->subs[pi].active = 0;
     const ContractType *pt = c->v->in_ports[pi].type;
@@ -927,6 +931,15 @@ void sup_core_module_event(SupCore *c, int64_t t, const char *module, int src_po
     cur.size = pt->size;
     process(c, -1, &cur);
     drain_queue(c);
+    return (int)(c->rule_changes - changes_before);
+}
+
+void sup_core_format_event_value(const SupCore *c, int in_port, const void *data, size_t size, char *buf,
+                                 size_t len) {
+    int pi = in_port_index(c->v, in_port);
+    const ContractType *type = pi >= 0 ? c->v->in_ports[pi].type : NULL;
+    if (type && data && size >= type->size) engine_format_value(buf, len, data, type);
+    else if (len) snprintf(buf, len, "?");
 }
 
 void sup_core_ord_event(SupCore *c, int64_t t, int port, const char *schema) {

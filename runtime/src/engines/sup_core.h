@@ -135,9 +135,15 @@ int sup_core_function_running(const SupCore *c, const char *name);
 
 /** An event from `module`'s out port `src_port` with its data. in_port >= 0 names the
  *  supervisor in port it arrived on; -1: found from the active subscriptions. Events on no
- *  active subscription are ignored (traced). */
-void sup_core_module_event(SupCore *c, int64_t t, const char *module, int src_port, int in_port,
-                           const void *data, size_t size);
+ *  active subscription are ignored (traced). Returns the rule changes it made (rules turned
+ *  active or inactive, those of the rules it ended included): 0 when it changed no rule. */
+int sup_core_module_event(SupCore *c, int64_t t, const char *module, int src_port, int in_port,
+                          const void *data, size_t size);
+/** The value of an event that arrived on in port `in_port`, as a rule's cause writes it
+ *  (engine_format_value with the port's type: `"lost"`, `12`, `{x=1.5,mode=AUTO}`); `?` for an
+ *  unknown port or fewer bytes than its type holds. */
+void sup_core_format_event_value(const SupCore *c, int in_port, const void *data, size_t size, char *buf,
+                                 size_t len);
 /** An ORD event (port 0: deadline miss, 1: conflict) carrying a schema name. */
 void sup_core_ord_event(SupCore *c, int64_t t, int port, const char *schema);
 

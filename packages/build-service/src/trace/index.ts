@@ -17,6 +17,8 @@ export { renderStory, StoryTeller, CUT_RECORD, crashText, unheardEventText, type
 export { DataFlowUse, SILENT_FLOW_MIN_NS, SPARSE_FLOW_RATIO } from './data-flow-use.js';
 export { SupervisorFlowUse } from './supervisor-flow-use.js';
 export { EventWaits, flowWaitsLine, waitTotalsText, type FlowWaitTotals } from './event-waits.js';
+export { UnmatchedEvents, changedNoRule, receivedValue } from './unmatched-events.js';
+export { ProducerChanges, isInterleave } from './producer-changes.js';
 export { MinHeap } from './min-heap.js';
 export { TRACE_LINES_KEPT } from './replay-bound.js';
 export { renderTraceTable, withTraceTable } from './render-doc.js';

@@ -36,14 +36,14 @@ function unknown(file: string, line: number, reason: string, text: string): Unkn
 }
 
 /** `key=value` words of a detail (the first of each key: field-checks.ts wordValueIn), values as
- *  numbers when they are plain digits. Each key is looked for in place rather than by splitting the
+ *  numbers when they are plain digits; restKey's value is the rest of the detail. Each key is looked for in place rather than by splitting the
  *  detail into words: this runs for every record of a live trace (thousands a second). */
-function detailFields(detail: string, keys: readonly string[]): Record<string, string | number> {
+function detailFields(detail: string, keys: readonly string[], restKey?: string): Record<string, string | number> {
     const out: Record<string, string | number> = {};
     for (const key of keys) {
         const from = wordValueIn(detail, key);
         if (from < 0) continue;
-        const end = spaceIn(detail, from, detail.length);
+        const end = key === restKey ? detail.length : spaceIn(detail, from, detail.length);
         const value = detail.slice(from, end);
         out[key] = isPlainIntegerIn(value) ? Number(value) : value;
     }
@@ -228,7 +228,7 @@ function recordOfFields(file: string, lineNo: number, line: string, mono: string
     }
     const fields = event === 'scheduler' ? classifyLine(SCHEDULER_LINES, detail)
         : event === 'supervisor' ? classifyLine(SUPERVISOR_LINES, detail)
-            : detailFields(detail, kind.detailKeys ?? []);
+            : detailFields(detail, kind.detailKeys ?? [], kind.restKey);
     const known: KnownRecord = { kind: kind.kind, monoNs: mono, wallTime: wall, module, peer, port: portN, size: sizeN, detail, fields };
     return known;
 }

@@ -15,6 +15,8 @@ import { ReleaseLateness } from './release-lateness.js';
 import { UndosToOrd } from './undos-to-ord.js';
 import { DataFlowUse } from './data-flow-use.js';
 import { EventWaits } from './event-waits.js';
+import { UnmatchedEvents } from './unmatched-events.js';
+import { ProducerChanges } from './producer-changes.js';
 import { EndedMidRun, RUN_STOPPING } from './ended-mid-run.js';
 import { stuckSaysGone } from './receiver-gone.js';
 
@@ -382,6 +384,10 @@ export class StoryTeller {
     private readonly dataFlows = new DataFlowUse();
     /** Event flows whose posts waited for room in their subscriber's full mailbox (flowLines). */
     private readonly eventWaits = new EventWaits();
+    /** A supervisor's module events that changed no rule (unmatched-events.ts). */
+    private readonly unmatched = new UnmatchedEvents();
+    /** Changes of producer on input data ports: schema switches, interleaves (producer-changes.ts). */
+    private readonly producerChanges = new ProducerChanges();
 
     /**
      * `+S.mmmmmm MODULE what` for a told record, else undefined; counts every record, and every
@@ -411,6 +417,10 @@ export class StoryTeller {
         this.dataFlows.see(k);
         const waited = this.eventWaits.see(k);
         if (waited) return `${at(k)} ${waited}`;
+        const unmatched = this.unmatched.see(k);
+        if (unmatched) return `${at(k)} ${unmatched}`;
+        const changed = this.producerChanges.see(k);
+        if (changed) return `${at(k)} ${changed}`;
         if (k.kind === 'supervisor' && SUPERVISOR_TOLD.has(what)) return `${at(k)} ${k.detail}`;
         // every action and undo, with its target and value: who activated a schema or a function, what it sent,
         // the modules it started and stopped, the flows it connected, the priorities it claimed
@@ -722,11 +732,13 @@ export class StoryTeller {
 
     /**
      * What the flows did, told at the end before the schemas' lines: each event flow whose posts
-     * waited for room (event-waits.ts), each data flow ORD connected that delivered nothing or far
-     * less than its reader read (data-flow-use.ts).
+     * waited for room (event-waits.ts), each supervisor's flow whose events changed no rule, with
+     * their values (unmatched-events.ts), each input data port whose producer changed
+     * (producer-changes.ts), each data flow ORD connected that delivered nothing or far less than
+     * its reader read (data-flow-use.ts).
      */
     flowLines(): string[] {
-        return [...this.eventWaits.lines(), ...this.dataFlows.lines()];
+        return [...this.eventWaits.lines(), ...this.unmatched.lines(), ...this.producerChanges.lines(), ...this.dataFlows.lines()];
     }
 
     /** The same figures as data, in name order (`contract run` and `contract simulate --format json`). */
@@ -745,7 +757,9 @@ export class StoryTeller {
         return `${silent ? `${plural(silent, 'data flow')} that delivered nothing, ` : ''}` +
             `${silentEvents ? `${plural(silentEvents, 'event flow')} a supervisor connected that delivered nothing, ` : ''}` +
             `${sparse ? `${plural(sparse, 'data flow')} written far less often than read, ` : ''}` +
-            `${waits ? `${plural(waits, 'event post')} that waited for room, ` : ''}`;
+            `${waits ? `${plural(waits, 'event post')} that waited for room, ` : ''}` +
+            `${this.unmatched.count ? `${plural(this.unmatched.count, 'event')} that changed no rule, ` : ''}` +
+            `${this.producerChanges.interleaves ? `${plural(this.producerChanges.interleaves, 'interleaved producer change')}, ` : ''}`;
     }
 
     /**

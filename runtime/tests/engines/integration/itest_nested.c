@@ -56,6 +56,16 @@ void scenario_nested(const char *root, const char *bin, const char *launcher) {
     }
     check(in_order, "SLV.work started by GLT, W1 -> W2 on endof, stopped by GLT");
     check(txt && strstr(txt, "[GLT] rule top.T1 inactive"), "SLV's notify reached GLT (T1 ended)");
+    /* each event a supervisor took is recorded with its value and the rule changes it made:
+       AMX's 2 and 4 changed no rule (W1 waits for ev > 5), its 6 ended W1 (and started W2) */
+    char *glt = read_csv_log(&s, "GLT");
+    check(slv && strstr(slv, ",SLV,event_received,AMX,0,") && strstr(slv, " rules=0 value=2\n") &&
+              strstr(slv, " rules=0 value=4\n") && strstr(slv, " value=6\n") && !strstr(slv, " rules=0 value=6\n") &&
+              glt && strstr(glt, ",GLT,event_received,SLV,0,") && strstr(glt, " value=\"\"finished\"\"\"\n") &&
+              !strstr(glt, " rules=0 value=\"\"finished"),
+          "event received: SLV's records of AMX's events say their values and what they changed (rules=0 for 2 "
+          "and 4, not for 6), GLT's of SLV's \"finished\" (a string, CSV-quoted)");
+    free(glt);
     if (scenario_failed(&s)) fprintf(stderr, "launcher output (nested scenario):\n%s\n", txt ? txt : "(none)");
     free(amx);
     free(slv);
