@@ -3,7 +3,7 @@
  * writes which kind, and what peer/port/detail hold). Pure and total: a record it does not use
  * changes only the record count; nothing read from the trace can make it throw.
  */
-import { crashText, dataDropReason, isRule, missedTicksOf, overrunningAfter, skippedReleasesOf, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { changedNoRule, crashText, receivedValue, dataDropReason, isRule, missedTicksOf, overrunningAfter, skippedReleasesOf, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { goneModuleSign, type GoneSign } from './gone-signs.js';
 import {
   HIST_BUCKETS, histogramBucket, MAX_NAMES, RECENT_MARKS,
@@ -74,11 +74,12 @@ function pushBounded<T>(list: T[], item: T, max: number): void {
   if (list.length > max) list.shift();
 }
 
-function count(s: MonitorState, map: Map<string, FlowCount>, key: string, t: Ns): void {
+function count(s: MonitorState, map: Map<string, FlowCount>, key: string, t: Ns): FlowCount | undefined {
   const f = entry(s, map, key, () => ({ count: 0, last: t }));
-  if (!f) return;
+  if (!f) return undefined;
   f.count++;
   f.last = t;
+  return f;
 }
 
 const num = (v: unknown): number | undefined => (typeof v === 'number' && Number.isFinite(v) ? v : undefined);
@@ -220,6 +221,9 @@ function foldEventWaited(s: MonitorState, k: KnownRecord, t: Ns): void {
 function whole(v: unknown): number {
   return typeof v === 'number' && Number.isSafeInteger(v) && v > 0 ? v : 0;
 }
+
+/** Longest event value kept for a flow's row (the runtime cuts a string at 64 characters; a datatype's fields may be longer). */
+const MAX_VALUE_CHARS = 80;
 
 /** Longest request name kept for the panel (a forged detail can be a whole line). */
 const MAX_REQUEST_CHARS = 40;
@@ -500,10 +504,15 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       const from = num(f['from_port']);
       if (!k.peer || k.port === null || from === undefined) return;
       const flow = `${k.peer}:${from}->${k.module}:${k.port}`;
-      count(s, s.eventFlows, flow, t);
+      const counted = count(s, s.eventFlows, flow, t);
       // the longest delivery latency, which the story's closing line of a flow that waited names
-      const latency = whole(f['latency_ns']), e = s.eventFlows.get(flow);
-      if (e && latency > (e.maxLatencyNs ?? 0)) e.maxLatencyNs = latency;
+      const latency = whole(f['latency_ns']);
+      if (counted && latency > (counted.maxLatencyNs ?? 0)) counted.maxLatencyNs = latency;
+      // a supervisor's: the value it received, and whether it changed no rule (unmatched-events.ts)
+      const value = receivedValue(k);
+      if (!counted || value === undefined) return;
+      counted.lastValue = value.length > MAX_VALUE_CHARS ? `${value.slice(0, MAX_VALUE_CHARS)}…` : value;
+      if (changedNoRule(k)) counted.unmatched = (counted.unmatched ?? 0) + 1;
       return;
     }
     default:

@@ -24,7 +24,7 @@ import { MarksStrip, markTooltip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { unheardEventText } from '@contract-studio/build-service/trace';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
-import { NOT_IN_MODEL, crashedModulesText, notReleasedText, schedulingText, flowDropText, flowWaitText, flowWaitTitle, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, ruleTexts, quietDataFlowRow, timeReadout, unheardEventsRow } from './panel-text.js';
+import { NOT_IN_MODEL, crashedModulesText, notReleasedText, schedulingText, flowDropText, flowValueText, flowWaitText, flowWaitTitle, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, ruleTexts, quietDataFlowRow, timeReadout, unheardEventsRow } from './panel-text.js';
 import { visibleText } from '@contract-studio/conventions';
 import { shortAtWord } from '../util/short-text.js';
 
@@ -599,10 +599,11 @@ export class MonitorPanel {
       return el;
     });
     const flows = [...[...s.dataFlows].map(([k, f]) => ({ k, f, kind: 'data' })), ...[...s.eventFlows].map(([k, f]) => ({ k, f, kind: 'event' }))]
-      .sort((a, b) => (b.f.dropped ?? 0) - (a.f.dropped ?? 0) || (b.f.waits ?? 0) - (a.f.waits ?? 0) || b.f.count - a.f.count).slice(0, Math.max(0, 12 - unheard.length - quiet.length));
+      .sort((a, b) => (b.f.dropped ?? 0) - (a.f.dropped ?? 0) || (b.f.waits ?? 0) - (a.f.waits ?? 0) || (b.f.unmatched ?? 0) - (a.f.unmatched ?? 0) || b.f.count - a.f.count).slice(0, Math.max(0, 12 - unheard.length - quiet.length));
     const rows = flows.map(({ k, f, kind }) => {
       const el = this.row(`flow:${kind}:${k}`, () => h('div', { class: `monitor-flow ${kind}`, 'data-flow': k }));
-      setText(el, `${kind === 'data' ? '━' : '┅'} ${k.replace('->', ' → ')} ×${f.count}${flowDropText(k, f)} · last ${fmtT(f.last)}${flowWaitText(f)}`);
+      setText(el, `${kind === 'data' ? '━' : '┅'} ${k.replace('->', ' → ')} ×${f.count}${flowDropText(k, f)} · last ${fmtT(f.last)}${flowValueText(f)}${flowWaitText(f)}`);
+      setAttr(el, 'data-unmatched', String(f.unmatched ?? 0));
       setAttr(el, 'data-pulse', String(pulsing.has(k)));
       setAttr(el, 'data-dropped', String(f.dropped ?? 0));
       setAttr(el, 'data-waited', String(f.waits ?? 0));

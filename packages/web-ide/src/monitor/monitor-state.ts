@@ -167,6 +167,9 @@ export interface FlowCount {
   maxWaitNs?: number;
   /** An event flow's deliveries' longest latency (`event_received`'s `latency_ns`): the closing line of a flow that waited names it. */
   maxLatencyNs?: number;
+  /** A supervisor's event flow: the last value it received (its `event_received` record's, cut at MAX_VALUE_CHARS), and how many of its events changed no rule (`rules=0`). */
+  lastValue?: string;
+  unmatched?: number;
 }
 
 export interface MonitorState {

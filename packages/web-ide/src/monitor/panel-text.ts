@@ -122,6 +122,16 @@ function waitTotals(f: FlowCount): FlowWaitTotals {
 }
 
 /**
+ * ` · value "lost" · ⚠ 12 changed no rule` on a supervisor's event flow's Deliveries row: the last
+ * value it received and how many of its events changed no rule (a rule waiting for another value:
+ * `contract trace` tells them, `LFR got CAM:0 ×12 that changed no rule: "lsot" ×12`), else ''.
+ */
+export function flowValueText(f: FlowCount): string {
+  if (f.lastValue === undefined) return '';
+  return ` · value ${f.lastValue}${f.unmatched ? ` · ⚠ ${f.unmatched} changed no rule` : ''}`;
+}
+
+/**
  * The Deliveries row of a connected data flow that delivered nothing or far less than read, told
  * once the records are over: `━ ⚠ data flow SRT:1 -> BLT:0 connected for 5.834 s (schema sortLoop): 0
  * values delivered (SRT posted none on its output :1); BLT read nothing in its 892 releases`.
