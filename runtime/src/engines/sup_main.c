@@ -608,14 +608,17 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
             } else {
                 /* the delivery, as a module's GetEventId records it (the trace's event flows), written
                    once the rules have seen it, with its value and what it changed: `rules=0` is an
-                   event no rule waited for (a rule's `status == "lost"` and a "lsot" sent) */
+                   event no rule waited for (a rule's `status == "lost"` and a "lsot" sent), and
+                   taken_ns: when the engine took it, before the rule changes it made */
+                const RTIME taken = GetTime();
                 int changed = sup_core_module_event(c, now, m->Param.Event.sourceModule, m->Param.Event.sourcePort,
                                                     m->Param.Event.targetPort, m->Data, m->DataSize);
                 char value[ACTION_VALUE_MAX];
                 sup_core_format_event_value(c, m->Param.Event.targetPort, m->Data, m->DataSize, value, sizeof value);
                 char detail[ACTION_VALUE_MAX + 96];
-                snprintf(detail, sizeof detail, "from_port=%d latency_ns=%lld rules=%d value=%s", m->Param.Event.sourcePort,
-                         (long long)(m->ReceptionTime - m->ProductionTime), changed, value);
+                snprintf(detail, sizeof detail, "from_port=%d latency_ns=%lld taken_ns=%lld rules=%d value=%s",
+                         m->Param.Event.sourcePort, (long long)(m->ReceptionTime - m->ProductionTime), (long long)taken,
+                         changed, value);
                 ContractLog("event_received", m->Param.Event.sourceModule, m->Param.Event.targetPort, m->DataSize, detail);
             }
             break;

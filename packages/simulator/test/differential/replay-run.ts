@@ -159,7 +159,9 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
     for (const r of known) {
         if (r.kind !== 'event_received' || !plan.supervisors.has(r.module) || plan.supervisors.has(r.peer)) continue;
         const key = `${r.module} ${r.peer}:${(r as KnownRecord).fields?.['from_port'] ?? ''}`;
-        (takes.get(key) ?? takes.set(key, []).get(key)!).push(mono(r));
+        // a supervisor's record says when its engine took the event (taken_ns): it is written after the rule changes the event made
+        const taken = (r as KnownRecord).fields?.['taken_ns'];
+        (takes.get(key) ?? takes.set(key, []).get(key)!).push(typeof taken === 'number' ? BigInt(taken) : mono(r));
     }
     // every event each supervisor received from a module, over the whole run, in its log's order
     const received = new Map<string, Receipt[]>(); // `${supervisor} ${source}` -> receipts
@@ -460,7 +462,8 @@ function decisionsOnInputsBefore(known: (KnownRecord | RuleRecord)[], supervisor
     for (const r of known) {
         if (!supervisors.has(r.module)) continue;
         const t = mono(r);
-        if (r.kind === 'request_received' || r.kind === 'event_received') input.set(r.module, t);
+        const taken = r.kind === 'event_received' ? (r as KnownRecord).fields?.['taken_ns'] : undefined;
+        if (r.kind === 'request_received' || r.kind === 'event_received') input.set(r.module, typeof taken === 'number' ? BigInt(taken) : t);
         else if (r.kind === 'supervisor' && (r as KnownRecord).fields?.['what'] === 'function_started') started.set(r.module, t);
         if (!isRule(r)) continue;
         if (r.active) activeSince.set(`${r.module} ${r.function}.${r.rule}`, t);
