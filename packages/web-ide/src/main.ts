@@ -140,6 +140,7 @@ async function main(): Promise<void> {
   });
   const first = workspace.allFiles().find((p) => p.endsWith('supervisor.contract')) ?? workspace.allFiles().find(isContract);
   if (!(await layout.restore()) && first) await editors.open(first);
+  ui.refreshResizers();
   layout.start();
   // a run this tab started before a reload goes on in the build service: follow it again
   // then the workspace log folder or trace file this tab's Monitor showed, read again (it comes back on top)

@@ -1,6 +1,7 @@
 import type { monaco } from '../editor/monaco.js';
 import type { EditorArea } from '../editor/editor-area.js';
 import { debounce } from '../util/dom.js';
+import { PANE_RESIZED } from './pane-resizer.js';
 
 /** What the browser keeps of the IDE's layout, per workspace root (localStorage). */
 export interface StoredLayout {
@@ -134,7 +135,7 @@ export class LayoutPersistence {
     editors.onActiveChanged.on(later);
     editors.editor.onDidChangeCursorPosition(later);
     editors.editor.onDidScrollChange(later);
-    window.addEventListener('mouseup', later); // the end of a resizer drag
+    window.addEventListener(PANE_RESIZED, later); // a resizer dragged or moved by the keyboard
     document.addEventListener('click', (e) => (e.target as Element | null)?.closest?.('.panel-tab') && later());
     window.addEventListener('pagehide', () => this.save());
     window.addEventListener('beforeunload', () => this.save());

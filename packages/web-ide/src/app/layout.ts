@@ -1,5 +1,9 @@
 import { h } from '../util/dom.js';
 import { RovingFocus } from '../util/roving-focus.js';
+import { makePaneResizer } from './pane-resizer.js';
+
+/** The editor's least height (styles.css `.editor-area`: min(260px, 100% - 84px)), which the bottom panel's resizer leaves it. */
+const EDITOR_MIN_HEIGHT = 260;
 
 /** The static frame of the IDE: top bar, sidebar (explorer + outline), editor, bottom panel, status bar. */
 export function createLayout(root: HTMLElement) {
@@ -27,14 +31,14 @@ export function createLayout(root: HTMLElement) {
 
   const explorerBody = h('div', { class: 'section-body explorer-body' });
   const outlineBody = h('div', { class: 'section-body outline-body' });
-  const sidebar = h('aside', { class: 'sidebar' },
+  const sidebar = h('aside', { class: 'sidebar', id: 'sidebar' },
     h('section', { class: 'side-section explorer-section', 'aria-labelledby': 'title-explorer' }, h('h2', { class: 'section-title', id: 'title-explorer' }, 'Explorer'), explorerBody),
     h('section', { class: 'side-section outline-section', 'aria-labelledby': 'title-outline' }, h('h2', { class: 'section-title', id: 'title-outline' }, 'Outline'), outlineBody));
 
   const editorRoot = h('main', { class: 'editor-area' });
   const panelTabs = h('div', { class: 'panel-tabs', role: 'tablist', 'aria-label': 'Panels' });
   const panelBodies = h('div', { class: 'panel-bodies' });
-  const panel = h('section', { class: 'bottom-panel', 'aria-label': 'Panels' }, panelTabs, panelBodies);
+  const panel = h('section', { class: 'bottom-panel', id: 'bottom-panel', 'aria-label': 'Panels' }, panelTabs, panelBodies);
 
   const status = {
     problems: h('span', { class: 'status-item status-problems', id: 'status-problems', title: 'Problems' }),
@@ -48,16 +52,32 @@ export function createLayout(root: HTMLElement) {
 
   const resizerV = h('div', { class: 'resizer vertical' });
   const resizerH = h('div', { class: 'resizer horizontal' });
-  const shell = h('div', { class: 'shell' }, topbar, h('div', { class: 'workbench' }, sidebar, resizerV, h('div', { class: 'center' }, editorRoot, resizerH, panel)), statusbar);
+  const center = h('div', { class: 'center' }, editorRoot, resizerH, panel);
+  const shell = h('div', { class: 'shell' }, topbar, h('div', { class: 'workbench' }, sidebar, resizerV, center), statusbar);
   root.append(shell);
-  dragResize(resizerV, (dx) => {
-    const w = Math.max(160, Math.min(600, sidebar.getBoundingClientRect().width + dx));
-    sidebar.style.width = `${w}px`;
+  // the pane resizers: dragged, or focused and moved by the arrow keys (docs/ide.md "Panes and small screens")
+  const sidebarResizer = makePaneResizer(resizerV, {
+    orientation: 'vertical', label: 'Resize the sidebar', controls: 'sidebar', direction: 1,
+    min: () => 160, max: () => 600,
+    size: () => sidebar.getBoundingClientRect().width,
+    setSize: (px) => (sidebar.style.width = `${px}px`),
   });
-  dragResize(resizerH, (_dx, dy) => {
-    const hgt = Math.max(80, Math.min(window.innerHeight - 200, panel.getBoundingClientRect().height - dy));
-    panel.style.height = `${hgt}px`;
+  // the editor keeps a minimum height (styles.css .editor-area): on a short window the bottom panel gives way first
+  const panelResizer = makePaneResizer(resizerH, {
+    orientation: 'horizontal', label: 'Resize the bottom panel', controls: 'bottom-panel', direction: -1,
+    min: () => 80,
+    max: () => {
+      const c = center.getBoundingClientRect().height;
+      return Math.max(80, c - resizerH.getBoundingClientRect().height - Math.min(EDITOR_MIN_HEIGHT, c - 84));
+    },
+    size: () => panel.getBoundingClientRect().height,
+    setSize: (px) => (panel.style.height = `${px}px`),
   });
+  /** The resizers' values said again (after the layout was restored). */
+  const refreshResizers = () => {
+    sidebarResizer.refresh();
+    panelResizer.refresh();
+  };
 
   const panels = new Map<string, { tab: HTMLElement; body: HTMLElement; onShow?: () => void }>();
   const showPanel = (id: string) => {
@@ -97,23 +117,5 @@ export function createLayout(root: HTMLElement) {
   const focusPanelTabs = () => panelFocus.focus();
   /** What Escape in the panel tabs does (focus the editor). */
   const onPanelEscape = (fn: () => void) => (escape = fn);
-  return { toolbar, workspaceName, explorerBody, outlineBody, editorRoot, status, addPanel, showPanel, focusPanelTabs, onPanelEscape };
-}
-
-function dragResize(handle: HTMLElement, move: (dx: number, dy: number) => void): void {
-  handle.addEventListener('mousedown', (e) => {
-    let x = e.clientX;
-    let y = e.clientY;
-    const onMove = (ev: MouseEvent) => {
-      move(ev.clientX - x, ev.clientY - y);
-      x = ev.clientX;
-      y = ev.clientY;
-    };
-    const onUp = () => {
-      window.removeEventListener('mousemove', onMove);
-      window.removeEventListener('mouseup', onUp);
-    };
-    window.addEventListener('mousemove', onMove);
-    window.addEventListener('mouseup', onUp);
-  });
+  return { toolbar, workspaceName, explorerBody, outlineBody, editorRoot, status, addPanel, showPanel, focusPanelTabs, onPanelEscape, refreshResizers };
 }

@@ -43,7 +43,7 @@ export class GeneratePanel {
   show(r: GenerateReport): void {
     const base = r.srcGen ? `${r.srcGen}/` : '';
     const fileLink = (rel: string, cls = '', line?: number) =>
-      h('div', { class: `gen-file ${cls}`, 'data-path': base + rel, ...openable(() => this.open(base + rel, line)) }, h('span', { class: 'file-glyph', 'aria-hidden': 'true' }, /\.(c|h)$/.test(rel) ? 'C' : '≡'), h('span', { class: 'gen-name', title: rel }, rel));
+      h('div', { class: `gen-file ${cls}`, 'data-path': base + rel, ...openable(() => this.open(base + rel, line)) }, h('span', { class: 'file-glyph', 'aria-hidden': 'true' }, /\.(c|h)$/.test(rel) ? 'C' : '≡'), pathName(rel));
     const problems = (title: string, list: Problem[], cls: string) =>
       list.length
         ? h('div', { class: `gen-section ${cls}` }, h('div', { class: 'gen-title' }, `${title} (${list.length})`),
@@ -68,4 +68,14 @@ export class GeneratePanel {
         h('div', { class: 'gen-tree' }, ...generated.map(([f, state]) => fileLink(f!, state!)))),
     );
   }
+}
+
+/**
+ * A path in a narrow column: its folders give way first (cut at their end, `generated/archi…`), the
+ * file name stays whole (`SharedTypes.h`); the whole path is the tooltip and the text read out.
+ */
+function pathName(rel: string): HTMLElement {
+  const slash = rel.lastIndexOf('/') + 1;
+  return h('span', { class: 'gen-name', title: rel },
+    slash ? h('span', { class: 'gen-dir' }, rel.slice(0, slash)) : null, h('span', { class: 'gen-base' }, rel.slice(slash)));
 }

@@ -123,6 +123,9 @@ export class MonitorPanel {
   /** Each periodic schema's CRITICAL_DELAY and PERIOD in ns, read once per schema definition. */
   private readonly schemaTimes = new WeakMap<object, { cd?: number; period?: number }>();
 
+  /** ◀ ⇥ End ▷ Play ▶: disabled until a run is shown. */
+  private readonly cursorButtons: HTMLButtonElement[];
+
   constructor(private readonly deps: MonitorPanelDeps) {
     this.strip = new MarksStrip((f) => this.seek(f * (this.model?.end ?? 0)));
     // live: pause / follow again; a run that ended: to its end (it says what it does: no toggle)
@@ -131,14 +134,19 @@ export class MonitorPanel {
     this.playBtn.addEventListener('click', () => this.setPlaying(!this.playing));
     this.slider.addEventListener('input', () => this.seek((Number(this.slider.value) / 1000) * (this.model?.end ?? 0)));
     const step = (dir: -1 | 1) => this.jumpMark(dir);
+    this.cursorButtons = [
+      h('button', { class: 'btn small', id: 'monitor-prev', title: 'Previous mark ([)', 'aria-label': 'Previous mark', onclick: () => step(-1) }, '◀'),
+      this.followBtn, this.playBtn,
+      h('button', { class: 'btn small', id: 'monitor-next', title: 'Next mark (])', 'aria-label': 'Next mark', onclick: () => step(1) }, '▶'),
+    ];
+    // no run shown yet: the cursor's buttons and the slider have nothing to move (enabled by setModel)
+    for (const b of this.cursorButtons) b.disabled = true;
+    this.slider.disabled = true;
     this.element = h('div', { class: 'monitor-view', tabindex: -1, 'aria-label': 'Run monitor' },
       h('div', { class: 'monitor-toolbar', role: 'toolbar', 'aria-label': 'Time cursor controls' },
         h('strong', {}, '◉ Monitor'), this.sourceSelect, this.label, h('span', { class: 'grow' }),
         // the cursor's buttons wrap together in a narrow pane, never one alone on a line
-        h('span', { class: 'monitor-buttons' },
-          h('button', { class: 'btn small', id: 'monitor-prev', title: 'Previous mark ([)', 'aria-label': 'Previous mark', onclick: () => step(-1) }, '◀'),
-          this.followBtn, this.playBtn,
-          h('button', { class: 'btn small', id: 'monitor-next', title: 'Next mark (])', 'aria-label': 'Next mark', onclick: () => step(1) }, '▶'))),
+        h('span', { class: 'monitor-buttons' }, ...this.cursorButtons)),
       h('div', { class: 'monitor-cursor' }, this.slider, this.timeText),
       this.strip.canvas,
       this.markSaid,
@@ -148,6 +156,11 @@ export class MonitorPanel {
         h('section', { class: 'monitor-section' }, h('h3', {}, 'Supervisors'), this.supEl),
         h('section', { class: 'monitor-section' }, h('h3', {}, 'Active schemas'), this.schedEl, this.schemasEl, this.periodicEl),
         h('section', { class: 'monitor-section monitor-arch' }, h('h3', {}, 'Architecture'), this.modulesEl, this.diagramEl, this.flowsEl)));
+    // a control focused by Tab in a short pane (a laptop at 150 %) is scrolled into view, not left
+    // below the pane's edge
+    this.element.addEventListener('focusin', (e) => {
+      if (e.target instanceof HTMLElement && e.target !== this.element) e.target.scrollIntoView({ block: 'nearest', inline: 'nearest' });
+    });
     this.element.addEventListener('keydown', (e) => {
       // a control's own keys are its own: Space presses a focused button (▷ Play, ▶, a rule), the
       // run list and text fields take every key; the slider takes its arrows, Home and End (Space
@@ -166,6 +179,8 @@ export class MonitorPanel {
   /** Shows `model` (live: follows its end as records come). */
   setModel(model: MonitorView, label: string, live: boolean, whole = false): void {
     this.model = model;
+    for (const b of this.cursorButtons) b.disabled = false;
+    this.slider.disabled = false;
     this.live = live;
     this.whole = whole;
     this.label.textContent = visibleText(label);

@@ -16,9 +16,13 @@ describe('the time readout', () => {
     expect(timeReadout({ t: 4.13e9, end: 4.13e9, following: true, runClock: 4.0e9, exact: true })).toBe('+4.1 s · live (last record +4.130000 s)');
   });
 
-  it('paused, scrubbed or replayed, and before the first record: the cursor and the run\'s end, as before', () => {
+  it('following a live run before its first record (its build, its init): it says it waits for that record, no time', () => {
+    expect(timeReadout({ t: 0, end: 0, following: true, runClock: undefined, exact: true })).toBe('waiting for the run\'s first record · live');
+  });
+
+  it('paused, scrubbed or replayed: the cursor and the run\'s end, as before', () => {
     expect(timeReadout({ t: 1.5e9, end: 4.13e9, following: false, exact: true })).toBe('+1.500000 s / +4.130000 s');
-    expect(timeReadout({ t: 0, end: 0, following: true, runClock: undefined, exact: true })).toBe('+0.000000 s / +0.000000 s · live');
+    expect(timeReadout({ t: 0, end: 0, following: false, exact: true })).toBe('+0.000000 s / +0.000000 s');
     expect(timeReadout({ t: 1e9, end: 60e9, following: false, exact: false })).toBe('+1.000000 s / +60.000000 s · counters approximate this far back');
   });
 });

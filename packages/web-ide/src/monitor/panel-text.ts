@@ -24,9 +24,12 @@ export interface ReadoutInput {
 /**
  * The time readout. Following a live run, it runs with the run's clock (a quiet stretch of the
  * run does not look stalled) and says where the shown state is: `+20.1 s · live (last record
- * +4.130000 s)`. Otherwise the cursor and the run's end: `+1.500000 s / +4.130000 s`.
+ * +4.130000 s)`; before the run's first record, that it waits for it. Otherwise the cursor and
+ * the run's end: `+1.500000 s / +4.130000 s`.
  */
 export function timeReadout({ t, end, following, runClock, exact }: ReadoutInput): string {
+  // a live run (its build, its modules' init) before its first record: no time to say yet
+  if (following && runClock === undefined && end === 0) return 'waiting for the run\'s first record · live';
   const approximate = exact ? '' : ' · counters approximate this far back';
   if (following && runClock !== undefined) return `+${(Math.max(runClock, end) / 1e9).toFixed(1)} s · live (last record ${fmtT(end)})${approximate}`;
   return `${fmtT(t)} / ${fmtT(end)}${following ? ' · live' : ''}${approximate}`;

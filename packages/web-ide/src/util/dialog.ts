@@ -6,6 +6,16 @@ import { RowsField, type RowsFieldSpec } from './rows-field.js';
 // focus goes back to the element that opened it (a toolbar button, the editor).
 
 /**
+ * A dialog's box: its title, a body that scrolls when the window is too short for it (a laptop at
+ * 125 % or 150 %: the control with the focus is scrolled into view), and its buttons below the
+ * body, always on screen (styles.css `.dialog`).
+ */
+function dialogBox(title: string, body: Array<HTMLElement | null>, buttons: HTMLElement[]): HTMLElement {
+  return h('div', { class: 'dialog', 'aria-label': title }, h('div', { class: 'dialog-title' }, title),
+    h('div', { class: 'dialog-body' }, ...body), h('div', { class: 'dialog-buttons' }, ...buttons));
+}
+
+/**
  * An in-page prompt (no native dialogs): resolves the entered text, or null when cancelled (Escape,
  * Cancel). An empty answer is null too, unless `allowEmpty` (then '': OK on an empty field is an answer).
  */
@@ -29,8 +39,7 @@ export function askText(title: string, initial = '', hint = '', opts: { allowEmp
       if (e.key === 'Enter') done(answer());
       if (e.key === 'Escape') done(null);
     });
-    const dialog = h('div', { class: 'dialog', 'aria-label': title }, h('div', { class: 'dialog-title' }, title), hint ? h('div', { class: 'dialog-hint' }, hint) : null, input,
-      h('div', { class: 'dialog-buttons' }, cancel, ok));
+    const dialog = dialogBox(title, [hint ? h('div', { class: 'dialog-hint' }, hint) : null, input], [cancel, ok]);
     const overlay = h('div', { class: 'dialog-overlay' }, dialog);
     modal = openModal(overlay, dialog, { onEscape: () => done(null), initialFocus: () => input.focus() });
     const dot = initial.lastIndexOf('.');
@@ -48,8 +57,7 @@ export function confirmAction(title: string, detail: string, okLabel = 'Delete')
       resolve(v);
     };
     const ok = h('button', { class: 'btn danger', onclick: () => done(true) }, okLabel);
-    const dialog = h('div', { class: 'dialog', 'aria-label': title }, h('div', { class: 'dialog-title' }, title), h('div', { class: 'dialog-hint' }, detail),
-      h('div', { class: 'dialog-buttons' }, h('button', { class: 'btn', onclick: () => done(false) }, 'Cancel'), ok));
+    const dialog = dialogBox(title, [h('div', { class: 'dialog-hint' }, detail)], [h('button', { class: 'btn', onclick: () => done(false) }, 'Cancel'), ok]);
     const overlay = h('div', { class: 'dialog-overlay' }, dialog);
     modal = openModal(overlay, dialog, { onEscape: () => done(false), initialFocus: () => ok.focus() });
   });
@@ -120,14 +128,14 @@ export function askFields(
       resolve(ok ? answer : null);
     };
     for (const i of inputs) keys(i);
-    const dialog = h('div', { class: 'dialog', 'aria-label': title }, h('div', { class: 'dialog-title' }, title),
+    const dialog = dialogBox(title, [
       ...fields.flatMap((f, n) => {
         const c = controls[n]!;
         if (c instanceof RowsField) return [c.element];
         return 'checkbox' in f && f.checkbox ? [h('label', { class: 'dialog-hint dialog-check-row' }, c, ` ${f.label}`)] : [h('label', { class: 'dialog-hint' }, f.label), c];
       }),
       problemLine,
-      h('div', { class: 'dialog-buttons' }, h('button', { class: 'btn', onclick: () => done(false) }, 'Cancel'), h('button', { class: 'btn primary', onclick: () => done(true) }, 'Save')));
+    ], [h('button', { class: 'btn', onclick: () => done(false) }, 'Cancel'), h('button', { class: 'btn primary', onclick: () => done(true) }, 'Save')]);
     const overlay = h('div', { class: 'dialog-overlay' }, dialog);
     modal = openModal(overlay, dialog, { onEscape: () => done(false), initialFocus: () => inputs[0]?.focus() });
   });

@@ -8,11 +8,14 @@ export interface AxeSummary {
 
 /**
  * An axe-core scan of the page as it is (WCAG 2.x A/AA rules); Monaco's own editor DOM is left out
- * (a third-party widget with its own accessibility mode). The report is printed in the test output.
+ * (a third-party widget with its own accessibility mode), unless `editor`: then the editor's text
+ * is scanned too — its colours are the IDE's theme (line numbers, keywords, the current line).
+ * The report is printed in the test output.
  */
-export async function axeScan(page: Page, screen: string): Promise<AxeSummary> {
-  const r = await new AxeBuilder({ page }).withTags(['wcag2a', 'wcag2aa', 'wcag21a', 'wcag21aa', 'best-practice'])
-    .exclude('.monaco-editor').exclude('.monaco-diff-editor').analyze();
+export async function axeScan(page: Page, screen: string, opts: { editor?: boolean } = {}): Promise<AxeSummary> {
+  let builder = new AxeBuilder({ page }).withTags(['wcag2a', 'wcag2aa', 'wcag21a', 'wcag21aa', 'best-practice']);
+  if (!opts.editor) builder = builder.exclude('.monaco-editor').exclude('.monaco-diff-editor');
+  const r = await builder.analyze();
   const violations = r.violations.map((v) => ({
     id: v.id, impact: v.impact ?? 'unknown', nodes: v.nodes.length, help: v.help,
     targets: v.nodes.slice(0, 3).map((n) => n.target.join(' ')),

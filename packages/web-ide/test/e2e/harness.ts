@@ -26,7 +26,14 @@ export interface Session {
 }
 
 /** A temp copy of the tutorial, the real IDE server on a free port, and a fresh headless Chromium. */
-export async function startSession(opts: { buildService?: boolean; empty?: boolean; example?: string; limits?: Record<string, number>; port?: number } = {}): Promise<Session> {
+/**
+ * `viewport` and `deviceScaleFactor` make a real screen: a 1366x768 laptop at 150 % is a viewport of
+ * 911x512 CSS pixels at a scale of 1.5; `reducedMotion: 'reduce'` is the system's "reduce motion".
+ */
+export async function startSession(opts: {
+  buildService?: boolean; empty?: boolean; example?: string; limits?: Record<string, number>; port?: number;
+  viewport?: { width: number; height: number }; deviceScaleFactor?: number; reducedMotion?: 'reduce' | 'no-preference';
+} = {}): Promise<Session> {
   const base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-e2e-')));
   // named after its example, as `contract serve examples/mobile-robot` names it (the top bar shows it)
   const workspace = join(base, opts.empty ? 'workspace' : basename(opts.example ?? TUTORIAL));
@@ -37,7 +44,9 @@ export async function startSession(opts: { buildService?: boolean; empty?: boole
   mkdirSync(userDataDir);
   mkdirSync(SHOTS, { recursive: true });
   const context = await chromium.launchPersistentContext(userDataDir, {
-    executablePath: '/usr/bin/chromium', args: CHROMIUM_ARGS, viewport: { width: 1440, height: 900 },
+    executablePath: '/usr/bin/chromium', args: CHROMIUM_ARGS, viewport: opts.viewport ?? { width: 1440, height: 900 },
+    ...(opts.deviceScaleFactor ? { deviceScaleFactor: opts.deviceScaleFactor } : {}),
+    ...(opts.reducedMotion ? { reducedMotion: opts.reducedMotion } : {}),
   });
   const browser = context.browser() as Browser;
   const page = context.pages()[0] ?? (await context.newPage());
@@ -168,7 +177,9 @@ export async function openAnotherBrowser(s: Session, name: string): Promise<{ pa
   const dir = join(s.userDataDir, '..', `chromium-${name}`);
   mkdirSync(dir, { recursive: true });
   const context = await chromium.launchPersistentContext(dir, {
-    executablePath: '/usr/bin/chromium', args: CHROMIUM_ARGS, viewport: { width: 1440, height: 900 },
+    executablePath: '/usr/bin/chromium', args: CHROMIUM_ARGS, viewport: opts.viewport ?? { width: 1440, height: 900 },
+    ...(opts.deviceScaleFactor ? { deviceScaleFactor: opts.deviceScaleFactor } : {}),
+    ...(opts.reducedMotion ? { reducedMotion: opts.reducedMotion } : {}),
   });
   const page = context.pages()[0] ?? (await context.newPage());
   page.on('pageerror', (e) => console.error(`[page error ${name}]`, e.message));
