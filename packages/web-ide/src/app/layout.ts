@@ -52,8 +52,11 @@ export function createLayout(root: HTMLElement) {
 
   const resizerV = h('div', { class: 'resizer vertical' });
   const resizerH = h('div', { class: 'resizer horizontal' });
-  const center = h('div', { class: 'center' }, editorRoot, resizerH, panel);
-  const shell = h('div', { class: 'shell' }, topbar, h('div', { class: 'workbench' }, sidebar, resizerV, center), statusbar);
+  // each resizer lies on the edge of the pane it resizes, inside its landmark (axe-core: no content outside one)
+  sidebar.append(resizerV);
+  panel.prepend(resizerH);
+  const center = h('div', { class: 'center' }, editorRoot, panel);
+  const shell = h('div', { class: 'shell' }, topbar, h('div', { class: 'workbench' }, sidebar, center), statusbar);
   root.append(shell);
   // the pane resizers: dragged, or focused and moved by the arrow keys (docs/ide.md "Panes and small screens")
   const sidebarResizer = makePaneResizer(resizerV, {
@@ -68,7 +71,7 @@ export function createLayout(root: HTMLElement) {
     min: () => 80,
     max: () => {
       const c = center.getBoundingClientRect().height;
-      return Math.max(80, c - resizerH.getBoundingClientRect().height - Math.min(EDITOR_MIN_HEIGHT, c - 84));
+      return Math.max(80, c - Math.min(EDITOR_MIN_HEIGHT, c - 84));
     },
     size: () => panel.getBoundingClientRect().height,
     setSize: (px) => (panel.style.height = `${px}px`),
