@@ -25,8 +25,8 @@ export interface Session {
   close(): Promise<void>;
 }
 
-/** A temp copy of the tutorial, the real IDE server on a free port, and a fresh headless Chromium. */
 /**
+ * A temp copy of the tutorial, the real IDE server on a free port, and a fresh headless Chromium.
  * `viewport` and `deviceScaleFactor` make a real screen: a 1366x768 laptop at 150 % is a viewport of
  * 911x512 CSS pixels at a scale of 1.5; `reducedMotion: 'reduce'` is the system's "reduce motion".
  */
@@ -177,9 +177,7 @@ export async function openAnotherBrowser(s: Session, name: string): Promise<{ pa
   const dir = join(s.userDataDir, '..', `chromium-${name}`);
   mkdirSync(dir, { recursive: true });
   const context = await chromium.launchPersistentContext(dir, {
-    executablePath: '/usr/bin/chromium', args: CHROMIUM_ARGS, viewport: opts.viewport ?? { width: 1440, height: 900 },
-    ...(opts.deviceScaleFactor ? { deviceScaleFactor: opts.deviceScaleFactor } : {}),
-    ...(opts.reducedMotion ? { reducedMotion: opts.reducedMotion } : {}),
+    executablePath: '/usr/bin/chromium', args: CHROMIUM_ARGS, viewport: { width: 1440, height: 900 },
   });
   const page = context.pages()[0] ?? (await context.newPage());
   page.on('pageerror', (e) => console.error(`[page error ${name}]`, e.message));

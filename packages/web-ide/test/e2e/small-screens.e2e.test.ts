@@ -64,6 +64,12 @@ async function checkDialogFits(page: Page, name: string, dialogSel = '[role=dial
   return { scrolls, stops: seen.size };
 }
 
+/** The cursor on the file's first `import`: its other places are highlighted (the keywords on the highlight are scanned too). */
+async function highlightWordAtCursor(page: Page): Promise<void> {
+  await placeCursor(page, 'import', 2);
+  await expect.poll(() => page.locator('.monaco-editor .view-overlays [class*="wordHighlight"], .monaco-editor .view-overlays .selectionHighlight').count(), { timeout: 10_000 }).toBeGreaterThan(1);
+}
+
 describe('a 1366x768 laptop at 150 % (911x512 at scale 1.5, reduce motion)', () => {
   let s: Session;
   beforeAll(async () => {
@@ -83,7 +89,7 @@ describe('a 1366x768 laptop at 150 % (911x512 at scale 1.5, reduce motion)', () 
     const { page } = s;
     await page.locator('#btn-run-settings').click();
     await page.locator('[role=dialog] .dialog-rows-add').waitFor();
-    for (let i = 0; i < 3; i++) await page.locator('[role=dialog] .dialog-rows-add').click();
+    for (let i = 0; i < 3; i++) await page.locator('[role=dialog] .dialog-rows-add').click({ timeout: 5000 }); // scrolled to, in the dialog's body
     await page.locator('[role=dialog] .dialog-input').first().focus();
     const { scrolls, stops } = await checkDialogFits(page, 'Run settings');
     expect(scrolls).toBe(true);
@@ -157,20 +163,20 @@ describe('a 1366x768 laptop at 150 % (911x512 at scale 1.5, reduce motion)', () 
     await expect.poll(() => page.locator('.conflict-overlay').count()).toBe(0);
   });
 
-  it('with no run the Monitor\'s cursor buttons are disabled; the Monitor beside the editor keeps a usable height, the bottom panel gives way', async () => {
+  it('the Monitor beside the editor keeps a usable height, the bottom panel gives way; with no run its cursor buttons are disabled; a focused rule is scrolled into view', async () => {
     const { page } = s;
     await openFile(page, 'supervisor.contract');
     await page.keyboard.press('Alt+Shift+M');
     await page.locator('.side-pane .monitor-view').waitFor();
+    const pane = await box(page, '.side-pane');
+    console.log(`at 911x512: the Monitor's pane ${Math.round(pane.height)} px, its body ${Math.round((await box(page, '.monitor-body')).height)} px, the bottom panel ${Math.round((await box(page, '.bottom-panel')).height)} px`);
+    expect(pane.height).toBeGreaterThanOrEqual(220); // 135 before
+    expect((await box(page, '.bottom-panel')).height).toBeGreaterThanOrEqual(80);
     for (const id of ['monitor-prev', 'monitor-follow', 'monitor-play', 'monitor-next']) expect(await page.locator(`#${id}`).isDisabled(), id).toBe(true);
     await page.evaluate(() => (window as any).__ide.monitor.openFolder('recorded'));
     await expect.poll(() => page.locator('.monitor-rule').count(), { timeout: 15_000 }).toBeGreaterThan(3);
     for (const id of ['monitor-prev', 'monitor-follow', 'monitor-play', 'monitor-next']) expect(await page.locator(`#${id}`).isDisabled(), id).toBe(false);
-    const pane = await box(page, '.side-pane');
-    console.log(`at 911x512: the Monitor's pane ${Math.round(pane.height)} px, its body ${Math.round((await box(page, '.monitor-body')).height)} px, the bottom panel ${Math.round((await box(page, '.bottom-panel')).height)} px`);
-    expect(pane.height).toBeGreaterThanOrEqual(220); // 135 before
     expect((await box(page, '.monitor-body')).height).toBeGreaterThanOrEqual(40); // 8 before
-    expect((await box(page, '.bottom-panel')).height).toBeGreaterThanOrEqual(80);
     // a rule focused far down the Monitor is scrolled into view, inside the pane and above the bottom panel
     const last = page.locator('.monitor-rule').last();
     await last.focus();
@@ -229,8 +235,7 @@ describe('a 1366x768 laptop at 150 % (911x512 at scale 1.5, reduce motion)', () 
   it('the editor with a file open, axe-core: no serious or critical violation (its line numbers and keywords readable)', async () => {
     const { page } = s;
     await openFile(page, 'supervisor.contract');
-    await placeCursor(page, 'supervisor');
-    await page.waitForTimeout(500);
+    await highlightWordAtCursor(page);
     const scan = await axeScan(page, 'editor at 150 %', { editor: true });
     expect(seriousOf(scan)).toEqual([]);
   });
@@ -294,8 +299,7 @@ describe('the Monitor\'s readout and slider (1366x768 at 100 %)', () => {
   it('the editor with a file open, axe-core: no serious or critical violation', async () => {
     const { page } = s;
     await openFile(page, 'supervisor.contract');
-    await placeCursor(page, 'supervisor');
-    await page.waitForTimeout(500);
+    await highlightWordAtCursor(page);
     const scan = await axeScan(page, 'editor at 100 %', { editor: true });
     expect(seriousOf(scan)).toEqual([]);
   });
@@ -323,5 +327,28 @@ describe('the Monitor\'s readout and slider (1366x768 at 100 %)', () => {
     widths.push(await width());
     expect(new Set(widths).size, widths.join(' ')).toBe(1);
     await shot(page, 'small-screens-100-monitor-slider');
+  });
+});
+
+describe('a 1366x768 laptop at 125 % (1093x614 at scale 1.25)', () => {
+  let s: Session;
+  beforeAll(async () => {
+    s = await startSession({ port: 7902, viewport: { width: 1093, height: 614 }, deviceScaleFactor: 1.25 });
+    await openIde(s);
+  }, 90_000);
+  afterAll(async () => {
+    await s?.close();
+  });
+
+  it('Run settings with stdin rows fits the window: Cancel and Save on screen, Tab scrolls each control into view', async () => {
+    const { page } = s;
+    await page.locator('#btn-run-settings').click();
+    await page.locator('[role=dialog] .dialog-rows-add').waitFor();
+    for (let i = 0; i < 2; i++) await page.locator('[role=dialog] .dialog-rows-add').click({ timeout: 5000 });
+    await page.locator('[role=dialog] .dialog-input').first().focus();
+    const { scrolls } = await checkDialogFits(page, 'Run settings at 125 %');
+    expect(scrolls).toBe(true);
+    await shot(page, 'small-screens-125-run-settings');
+    await page.keyboard.press('Escape');
   });
 });
