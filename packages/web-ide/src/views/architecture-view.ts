@@ -5,11 +5,13 @@
  * Worker. Loaded lazily (dynamic import): not in the page's first load; once the IDE is ready and
  * idle, main.ts loads it and warms ELK's worker up (warmUpLayout).
  */
-import ELK, { type ElkNode, type ElkExtendedEdge, type ElkPort } from 'elkjs/lib/elk-api.js';
+import ELK, { type ElkNode } from 'elkjs/lib/elk-api.js';
 import elkWorkerUrl from 'elkjs/lib/elk-worker.min.js?url';
 import { h, debounce } from '../util/dom.js';
-import type { ArchSchema, ArchModule, ArchLocation } from '../lsp/architecture-model.js';
+import type { ArchSchema, ArchLocation } from '../lsp/architecture-model.js';
 import { PanZoom, type Size } from './pan-zoom.js';
+import { HEAD } from './schema-graph.js';
+import { layoutSchema, SMALLEST_FONT_PX, MIN_FONT_PX, type SchemaLayout } from './schema-layout.js';
 
 const SVG = 'http://www.w3.org/2000/svg';
 const elk = new ELK({ workerFactory: () => new Worker(elkWorkerUrl) });
@@ -39,119 +41,17 @@ function svg<K extends keyof SVGElementTagNameMap>(tag: K, attrs: Record<string,
   return el;
 }
 
-const portId = (m: string, kind: string, dir: string, index: number) => `${m}.${kind}.${dir}.${index}`;
-
 function toSeconds(t: string | undefined): number | undefined {
   const m = t?.match(/^(-?[\d.]+)(ns|us|ms|s)$/);
   if (!m) return undefined;
   return Number(m[1]) * { ns: 1e-9, us: 1e-6, ms: 1e-3, s: 1 }[m[2] as 'ns']!;
 }
 
-const NODE_W = 210;
-const HEAD = 26;
-const ROW = 20;
-
-/** A module box with fixed port positions: inputs on the left, outputs on the right, parameters on top. */
-function nodeOf(m: ArchModule): ElkNode {
-  const ins = m.ports.filter((p) => p.direction === 'in' && p.kind !== 'param');
-  const outs = m.ports.filter((p) => p.direction === 'out');
-  const params = m.ports.filter((p) => p.kind === 'param');
-  const rowY = (i: number) => HEAD + 8 + i * ROW;
-  const longest = (ps: typeof ins) => Math.max(0, ...ps.map((p) => `:${p.index} ${p.name}`.length));
-  const width = Math.max(NODE_W, 40 + 7 * (longest(ins) + longest(outs)));
-  const ports: ElkPort[] = [
-    ...ins.map((p, i) => ({ id: portId(m.name, p.kind, 'in', p.index), x: -5, y: rowY(i), width: 10, height: 10, layoutOptions: { 'port.side': 'WEST' } })),
-    ...outs.map((p, i) => ({ id: portId(m.name, p.kind, 'out', p.index), x: width - 5, y: rowY(i), width: 10, height: 10, layoutOptions: { 'port.side': 'EAST' } })),
-    ...params.map((p, i) => ({ id: portId(m.name, 'param', 'in', p.index), x: width / 2 - 5 + i * 60, y: -5, width: 10, height: 10, layoutOptions: { 'port.side': 'NORTH' } })),
-  ];
-  return {
-    id: m.name,
-    width,
-    height: HEAD + 14 + ROW * Math.max(ins.length, outs.length, 1),
-    ports,
-    layoutOptions: { portConstraints: 'FIXED_POS' },
-  };
-}
-
 /** The definition a diagram element stands for (a module, a port, a flow): a click goes there. */
 export const definitionOf = new WeakMap<Element, ArchLocation>();
 
-/** The smallest text of the drawing (port and flow labels, CSS .port-label/.edge-label) and the smallest size it is shown at automatically. */
-const SMALLEST_FONT_PX = 11;
 /** Layouts kept for schemas shown again (ArchitectureView.layoutOf). */
 const LAYOUTS_KEPT = 24;
-const MIN_FONT_PX = 9;
-/** A fold that shows the schema less than this much larger than the drawing before it ends the folded tries (layoutSchema). */
-const FOLD_GAIN = 1.05;
-
-/**
- * A folded drawing is tighter, so that more of the schema fits the pane at a readable size: an
- * 8-module loop docked beside the editor (about 530 x 470 px) fits whole at the readable scale
- * (modules 20 px apart, edges 5 px from modules and each other, a 4 px border).
- */
-const FOLDED_SPACING = {
-  'elk.layered.spacing.edgeNodeBetweenLayers': '5',
-  'elk.layered.spacing.edgeEdgeBetweenLayers': '5',
-  'elk.spacing.edgeNode': '5',
-  'elk.spacing.edgeEdge': '5',
-  'elk.padding': '[top=4,left=4,bottom=4,right=4]',
-};
-
-/**
- * Lays the schema out for the pane it is shown in: left to right in a wide pane, top to bottom in a
- * narrow one; folded into rows (or columns) when it would not fit the pane at a readable size.
- */
-export async function layoutSchema(schema: ArchSchema, pane?: Size): Promise<ElkNode> {
-  const known = new Set(schema.modules.map((m) => m.name));
-  const edges: ElkExtendedEdge[] = [];
-  schema.flows.forEach((f, i) => {
-    if (!known.has(f.from) || !known.has(f.to)) return;
-    edges.push({ id: `f${i}`, sources: [portId(f.from, f.kind, 'out', f.fromPort)], targets: [portId(f.to, f.kind, 'in', f.toPort)], labels: [{ text: f.label, width: 30, height: 14 }] });
-  });
-  schema.precedences.forEach((p, i) => {
-    if (known.has(p.from) && known.has(p.to)) edges.push({ id: `p${i}`, sources: [p.from], targets: [p.to] });
-  });
-  // Ports referenced by flows but missing on a module (errors in the model) are dropped by ELK; keep only valid ones.
-  const portIds = new Set(schema.modules.flatMap((m) => nodeOf(m).ports!.map((p) => p.id)));
-  const valid = edges.filter((e) => [...e.sources, ...e.targets].every((s) => portIds.has(s) || known.has(s)));
-  const down = !!pane && pane.width / Math.max(1, pane.height) < 1.3;
-  const layout = (wrapRatio?: number) => elk.layout({
-    id: 'root',
-    layoutOptions: {
-      'elk.algorithm': 'layered',
-      // a narrow pane (docked beside the editor) gets the modules top to bottom, a wide one left to right
-      'elk.direction': down ? 'DOWN' : 'RIGHT',
-      'elk.spacing.nodeNode': wrapRatio ? '20' : '50',
-      'elk.layered.spacing.nodeNodeBetweenLayers': down ? (wrapRatio ? '20' : '50') : '90',
-      'elk.edgeRouting': 'ORTHOGONAL',
-      'elk.edgeLabels.inline': 'true',
-      // a long chain (a periodic loop of 8 modules) folded into rows shaped like the pane
-      ...(wrapRatio ? { 'elk.layered.wrapping.strategy': 'MULTI_EDGE', 'elk.aspectRatio': wrapRatio.toFixed(2), ...FOLDED_SPACING } : {}),
-    },
-    children: schema.modules.map(nodeOf),
-    edges: valid.map((e) => ({ ...e, labels: e.labels?.map((l) => ({ ...l })) })), // fresh for each layout
-  });
-  const straight = await layout();
-  if (!pane) return straight;
-  // folded only when the straight drawing does not fit the pane at a readable size: into rows shaped
-  // like the pane, then (ELK's folding only approaches the shape asked) twice and four times as many,
-  // keeping the one that shows most of the schema. A try that shows hardly more of it (FOLD_GAIN) than
-  // the best so far ends the tries: ELK could not fold the graph (two modules flowing both ways: the same drawing
-  // at every shape asked), or folded it as far as it goes (each further try is as tall or taller).
-  // Every try was made whatever it gave, and the Monitor's first diagram of the tutorial was laid out
-  // four times in ELK's worker while gcc built the job (straight, then three folds giving one drawing).
-  const readable = MIN_FONT_PX / SMALLEST_FONT_PX;
-  const fitScale = (g: ElkNode) => Math.min((pane.width - 32) / Math.max(1, g.width ?? 1), (pane.height - 32) / Math.max(1, g.height ?? 1));
-  let best = straight;
-  for (const k of [1, 2, 4]) {
-    if (fitScale(best) >= readable) break;
-    const folded = await layout(pane.width / Math.max(1, pane.height) / k);
-    const gain = fitScale(folded) / fitScale(best);
-    if (gain > 1) best = folded;
-    if (gain <= FOLD_GAIN) break;
-  }
-  return best;
-}
 
 export function renderSchema(schema: ArchSchema, graph: ElkNode): SVGSVGElement {
   const w = (graph.width ?? 400) + 40;
@@ -208,7 +108,11 @@ export function renderSchema(schema: ArchSchema, graph: ElkNode): SVGSVGElement 
       g.append(box);
       if (!port) continue;
       const label = `:${port.index} ${port.name}`;
+      // a port on top or at the bottom (a drawing top to bottom: schema-graph.ts nodeOf) has its label inside the box, under the head or above the bottom edge
+      const side = p.layoutOptions?.['port.side'];
       const text = kind === 'param' ? svg('text', { x: p.x! + 5, y: p.y! - 4, class: 'port-label param', 'text-anchor': 'middle' }, `param :${port.index}`)
+        : side === 'NORTH' ? svg('text', { x: p.x!, y: HEAD + 13, class: `port-label ${kind}` }, label)
+        : side === 'SOUTH' ? svg('text', { x: p.x!, y: p.y! - 2, class: `port-label ${kind}` }, label)
         : dir === 'in' ? svg('text', { x: p.x! + 14, y: p.y! + 9, class: `port-label ${kind}` }, label)
         : svg('text', { x: p.x! - 4, y: p.y! + 9, class: `port-label ${kind}`, 'text-anchor': 'end' }, label);
       g.append(text);
@@ -426,6 +330,7 @@ export class ArchitectureView {
     this.info.textContent = schema.kind === 'periodic'
       ? `PERIOD ${schema.period ?? '?'} · CRITICAL_DELAY ${schema.criticalDelay ?? '?'} · ΣC ${(sumC * 1000).toFixed(2)} ms${period ? ` · utilisation ${((sumC / period) * 100).toFixed(1)} %` : ''}`
       : 'event schema (asynchronous modules)';
+    this.info.title = this.info.textContent;
     try {
       const pane = await this.paneSize();
       if (seq !== this.seq) return;
@@ -434,10 +339,10 @@ export class ArchitectureView {
       const source = JSON.stringify(schema);
       const d = this.drawn;
       if (d?.source === source && d.schema === schema.name && pane && d.pane.width === pane.width && d.pane.height === pane.height) return;
-      const graph = await this.layoutOf(schema, source, pane);
+      const { graph, note } = await this.layoutOf(schema, source, pane);
       if (seq !== this.seq) return;
       const drawing = renderSchema(schema, graph);
-      this.canvas.replaceChildren(drawing);
+      this.canvas.replaceChildren(drawing, ...(note ? [h('div', { class: 'arch-note', role: 'status' }, note)] : []));
       const size = { width: Number(drawing.dataset.width), height: Number(drawing.dataset.height) };
       // the same schema re-drawn after an edit keeps the user's zoom and pan; a new one starts readable
       const keepView = this.drawn?.schema === schema.name && pane && this.drawn.pane.width === pane.width && this.drawn.pane.height === pane.height;
@@ -460,9 +365,9 @@ export class ArchitectureView {
    * while the Monitor opens) waits for it instead of asking ELK for the same one; a failed one is
    * let go, so the next draw tries again.
    */
-  private readonly layouts = new Map<string, Promise<ElkNode>>();
+  private readonly layouts = new Map<string, Promise<SchemaLayout>>();
 
-  private layoutOf(schema: ArchSchema, source: string, pane: Size | undefined): Promise<ElkNode> {
+  private layoutOf(schema: ArchSchema, source: string, pane: Size | undefined): Promise<SchemaLayout> {
     const key = `${pane ? `${pane.width}x${pane.height}` : '-'} ${source}`;
     const kept = this.layouts.get(key);
     if (kept) {
@@ -470,7 +375,7 @@ export class ArchitectureView {
       this.layouts.set(key, kept); // the most recent last
       return kept;
     }
-    const graph = layoutSchema(schema, pane);
+    const graph = layoutSchema(schema, pane, (g) => elk.layout(g));
     this.layouts.set(key, graph);
     graph.catch(() => this.layouts.get(key) === graph && this.layouts.delete(key));
     for (const old of this.layouts.keys()) if (this.layouts.size > LAYOUTS_KEPT) this.layouts.delete(old);
