@@ -7,6 +7,18 @@ import { languageOf } from '../workspace/file-kinds.js';
 
 let views = 0;
 
+/** The choices' buttons, named by what each keeps (docs/ide.md "Saves, versions and merges"). */
+export const CONFLICT_BUTTONS = {
+  theirs: 'Keep the version on disk (saved elsewhere)',
+  mine: 'Keep my version (this tab)',
+  right: 'Save the right side as edited here',
+} as const;
+
+/** The one line under the title that says what each choice keeps. */
+export const CONFLICT_CHOICES =
+  `${CONFLICT_BUTTONS.mine}: your text wins, the other change is lost. ${CONFLICT_BUTTONS.theirs}: the change made elsewhere ` +
+  '(another tab, Generate All, git) wins, your edits are lost. Edit the merge puts both in the right side: keep what you want, then save it.';
+
 /**
  * Overlapping edits of one file, side by side (Monaco's diff editor): on the left the text on disk
  * (read-only), on the right the user's (editable). The user keeps theirs, takes the disk's, or
@@ -17,7 +29,8 @@ let views = 0;
  * The view is a modal dialog (util/modal.ts): the page behind is inert (keys never reach the
  * hidden editor), Tab and Shift+Tab go round the two sides and the buttons, Escape closes it
  * without choosing (the tab stays "Overlapping edits", nothing written; Ctrl+S in the tab shows it
- * again), and the focus goes back to the editor. "Save the right side" refuses a text with
+ * again), and the focus goes back to the editor. The buttons say what each keeps (CONFLICT_BUTTONS),
+ * a line under the title too; long lines wrap on both sides. "Save the right side as edited here" refuses a text with
  * conflict markers left, naming the line.
  */
 export class ConflictView {
@@ -113,16 +126,17 @@ export class ConflictView {
         const first = findConflictMarker(conflict.marked);
         if (first) diff.getModifiedEditor().revealLineInCenter(first.line);
       } }, 'Edit the merge'),
-      h('button', { class: 'btn', id: 'conflict-take-theirs', onclick: choose(() => conflict.theirs) }, 'Take theirs (disk)'),
+      h('button', { class: 'btn', id: 'conflict-take-theirs', title: 'Write the left side: the change made elsewhere stays, your edits in this tab are dropped', onclick: choose(() => conflict.theirs) }, CONFLICT_BUTTONS.theirs),
       // the tab's text now (the user may have typed in it before the view opened)
-      h('button', { class: 'btn', id: 'conflict-keep-mine', onclick: choose(() => this.tabText(conflict)) }, 'Keep mine'),
-      h('button', { class: 'btn primary', id: 'conflict-save-right', onclick: saveRight }, 'Save the right side'),
+      h('button', { class: 'btn', id: 'conflict-keep-mine', title: 'Write your tab\'s text as you typed it: the change made elsewhere is dropped', onclick: choose(() => this.tabText(conflict)) }, CONFLICT_BUTTONS.mine),
+      h('button', { class: 'btn primary', id: 'conflict-save-right', title: 'Write the right side as it is now in this view (your text, with what you edited here)', onclick: saveRight }, CONFLICT_BUTTONS.right),
     ];
     const overlay = h('div', { class: 'conflict-overlay', 'data-path': conflict.path, 'aria-labelledby': titleId, 'aria-describedby': hintId },
       h('div', { class: 'conflict-head' },
         h('div', { class: 'conflict-title', id: titleId }, `${conflict.path}: your edits and a change made elsewhere overlap`),
         h('div', { class: 'dialog-hint', id: hintId }, 'Left: the file on disk now. Right: your text (editable). Nothing is written until you choose; your text is kept in this browser meanwhile. ' +
-          'Tab moves between the two sides and the buttons; Escape decides later (Ctrl+S in the tab shows this again).')),
+          'Tab moves between the two sides and the buttons; Escape decides later (Ctrl+S in the tab shows this again).'),
+        h('div', { class: 'dialog-hint conflict-choices' }, CONFLICT_CHOICES)),
       changedAgain, host, error,
       h('div', { class: 'dialog-buttons' }, ...buttons));
     // in the page before the editor is created (it measures its host), not yet a modal
@@ -131,6 +145,8 @@ export class ConflictView {
     const diff = monaco.editor.createDiffEditor(host, {
       theme: 'contract-dark', automaticLayout: true, originalEditable: false, readOnly: false,
       renderSideBySide: true, minimap: { enabled: false }, fontSize: 13, scrollBeyondLastLine: false,
+      // long lines wrap on both sides: half the dialog's width cut them on the right
+      wordWrap: 'on', diffWordWrap: 'on',
       // no suggestion list: its widget, made on first use, could be asked for after the view is gone
       // (the language server does not know these models anyway)
       quickSuggestions: false, suggestOnTriggerCharacters: false,

@@ -62,7 +62,7 @@ describe('threeWayMerge (tab text vs disk text, both edited from the tab base)',
   });
 });
 
-describe('findConflictMarker (what "Save the right side" refuses)', () => {
+describe('findConflictMarker (what "Save the right side as edited here" refuses)', () => {
   it("finds the first marker of a merge's marked text, with its line", () => {
     const r = threeWayMerge(SCHED, SCHED.replace('MSD;', 'MSD; // mine'), SCHED.replace('MSD;', 'MSD; // theirs'));
     expect(r.clean).toBe(false);

@@ -56,7 +56,7 @@ export function threeWayMerge(base: string, mine: string, theirs: string): Merge
 /**
  * The first conflict marker line left in a text (`<<<<<<<`, `=======` or `>>>>>>>` at the start of
  * a line, as git and threeWayMerge's `marked` write them), with its 1-based line number, or
- * undefined. "Save the right side" refuses a text that still has one (docs/ide.md, "Saves,
+ * undefined. "Save the right side as edited here" refuses a text that still has one (docs/ide.md, "Saves,
  * versions and merges"). A line of exactly seven `=` counts; `==========` or `// =======` does not.
  */
 export function findConflictMarker(text: string): { line: number; marker: string } | undefined {

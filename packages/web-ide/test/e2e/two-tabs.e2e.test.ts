@@ -138,13 +138,14 @@ describe('one file edited in two IDE tabs and by a script', () => {
     expect(await backups(b)).toEqual([]);
   });
 
-  it('keep mine after overlapping edits writes the tab text on the disk version it was shown', async () => {
+  it('keep my version after overlapping edits (buttons named by what they keep, long lines wrapped) writes the tab text on the disk version it was shown', async () => {
     const a = s.page;
     const b = other.page;
     await b.context().setOffline(true);
     try {
       await placeCursor(b, 'MSD; // A', 'MSD; // A'.length);
-      await b.keyboard.type(' mine');
+      // a long line: it wraps in the view rather than being cut on the right
+      await b.keyboard.type(' mine, with a long explanation of the gain: add derivative action to damp the oscillation seen when the line curves sharply at speed');
       await b.locator('#status-save.error').waitFor({ timeout: 10_000 });
       await placeCursor(a, 'MSD; // A', 'MSD; // A'.length);
       await a.keyboard.type(' theirs');
@@ -154,6 +155,19 @@ describe('one file edited in two IDE tabs and by a script', () => {
     }
     await b.keyboard.press('Control+s');
     await b.locator('.conflict-overlay').waitFor({ timeout: 15_000 });
+    await b.locator('.conflict-overlay .monaco-diff-editor').waitFor({ timeout: 5000 });
+    // each button says what it keeps, and a line under the title says it for a beginner
+    expect(await b.locator('.conflict-overlay .dialog-buttons button').allTextContents())
+      .toEqual(['Edit the merge', 'Keep the version on disk (saved elsewhere)', 'Keep my version (this tab)', 'Save the right side as edited here']);
+    expect(await b.locator('.conflict-overlay .conflict-choices').textContent()).toMatch(/^Keep my version \(this tab\): your text wins, the other change is lost\. Keep the version on disk/);
+    // the long line wraps: the right side never scrolls sideways (its text fits its width)
+    const fits = () => b.evaluate(() => {
+      const e = ((window as any).__ide.monaco.editor.getEditors() as Array<{ getModel(): { uri: { scheme: string; path: string } } | null; getScrollWidth(): number; getLayoutInfo(): { width: number } }>)
+        .find((x) => x.getModel()?.uri.scheme === 'conflict' && x.getModel()!.uri.path.includes('/yours/'))!;
+      return e.getScrollWidth() <= e.getLayoutInfo().width;
+    });
+    await expect.poll(fits, { timeout: 5000 }).toBe(true);
+    await shot(b, '22-overlapping-edits-long-line-wrapped');
     const mine = await activeValue(b);
     await b.locator('#conflict-keep-mine').click();
     await expect.poll(disk, { timeout: 10_000 }).toBe(mine);
