@@ -16,7 +16,7 @@ export type { Sandbox, SandboxChoice, SandboxName, Mechanisms } from './sandbox/
 export { SandboxRegistry, SandboxUnavailableError } from './sandbox/select.js';
 export { ARTIFACT_BOUNDS, artifactBytes, type Artifact, type ArtifactBounds, type RunArtifacts, type SkippedArtifact } from './pipeline/artifacts.js';
 export { describeIssues, type RunIssue, type RunIssueKind } from './pipeline/run-issues.js';
-export { LauncherCrashes, failureWords, type LauncherFailure } from './pipeline/launcher-crashes.js';
+export { LauncherCrashes, failureWords, crashMeaningText, type LauncherFailure } from './pipeline/launcher-crashes.js';
 export { CRASH_MARK, crashSiteOfLine } from './pipeline/crash-reports.js';
 export { foreignMakefilesMessage } from './pipeline/foreign-makefiles.js';
 export { installedRuntimeProblem } from './pipeline/runtime-cache.js';

@@ -83,7 +83,7 @@ describe('a module the memory limit killed (defect 7)', () => {
         ]);
         expect(failures.map((f) => `module ${failureText(f)}`)).toEqual([
             "module CTL was killed by the memory limit (signal 9: the kernel's OOM killer, which kills the process using the most memory)",
-            'module MOT crashed (died by signal 11 (Segmentation fault))',
+            'module MOT crashed (died by signal 11 (Segmentation fault)): a bad pointer: NULL, freed, or past the end of an array',
         ]);
         // ORD's stuck report of it says the same
         expect(problemLines([{ kind: 'module-stuck', module: 'CTL', message: 'CTL has not finished release #6 after 100 periods: does its exec region set *stateindex = -1?' }], failures))

@@ -57,7 +57,7 @@ describe('contract trace: the crash files of a logs folder', () => {
         const { code, out } = await trace();
         expect(code).toBe(0);
         expect(out).toContain('crashed: signal 11 (SIGSEGV)'); // the story, from the log
-        expect(out).toContain(`\ncrash sites (the logs' crash files):\nEST crashed: signal 11 (SIGSEGV) at address 0x0, executable build-id ${buildId}\n`);
+        expect(out).toContain(`\ncrash sites (the logs' crash files):\nEST crashed: signal 11 (SIGSEGV) at address 0x0 (a bad pointer: NULL, freed, or past the end of an array), executable build-id ${buildId}\n`);
         // the offset is crash_here's first instruction + 1: a line of crash_here, from its opening brace on
         const line = Number(/\n  #0 crash_here at \S*\/modules\/EST_mod\/module\.c:(\d+)\n  #1 libc\.so\.6\+0x2724a\n/.exec(out)?.[1]);
         expect(line).toBeGreaterThanOrEqual(CRASH_LINE - 2);

@@ -151,8 +151,8 @@ describe('contract trace', () => {
             const io = capture(folder);
             expect(await runCli(['trace', '.'], io)).toBe(0);
             const lines = io.stdout.split('\n');
-            expect(lines).toContain('+1.000100s MSC  crashed: signal 11 (SIGSEGV)');
-            expect(lines).toContain('+0.760000s MAB  crashed: signal 6 (SIGABRT)');
+            expect(lines).toContain('+1.000100s MSC  crashed: signal 11 (SIGSEGV): a bad pointer: NULL, freed, or past the end of an array');
+            expect(lines).toContain('+0.760000s MAB  crashed: signal 6 (SIGABRT): the code called abort(), or an assert() failed: its message is on stderr');
             expect(io.stdout).not.toContain('no exit record');
             expect(lines.filter((l) => l.includes('not whole'))).toEqual([
                 '           MAB  not whole: its log holds 2 record(s), its crash record counts 4: 2 missing (lost at the crash, or removed or cut after the run?)',

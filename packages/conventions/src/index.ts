@@ -14,6 +14,7 @@ export * from './json-body.js';
 export * from './run-bounds.js';
 export * from './limit-option.js';
 export * from './stuck-advice.js';
+export * from './crash-signals.js';
 export * from './histogram-quantile.js';
 export * from './runtime-parts.js';
 export * from './stdin-entry.js';

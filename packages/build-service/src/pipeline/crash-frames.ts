@@ -6,12 +6,17 @@
  * (`#1 _exec at FILE:132 (inlined into ModuleMain at FILE:133)`: addr2line -i's places of one
  * address); a place whose file is not known `at ?`; a frame not mapped, its object and offset (`#2 the executable+0x40d8`, `#3 libc.so.6+0x2724a`).
  */
+import { crashSignalMeaning } from '@contract-studio/conventions';
 import type { CrashPlace, CrashReport } from './crash-reports.js';
 
-/** A report's head: `EST crashed: signal 11 (SIGSEGV) at address 0x0, executable build-id 8797…`. */
+/**
+ * A report's head, with what its signal means (conventions' crash-signals.ts): `EST crashed: signal
+ * 11 (SIGSEGV) at address 0x0 (a bad pointer: NULL, freed, or past the end of an array), executable build-id 8797…`.
+ */
 export function crashHeadText(report: CrashReport): string {
   const addr = report.signal === 11 || report.signal === 7 ? ` at address 0x${report.address}` : '';
-  return `${report.module} crashed: signal ${report.signal} (${report.signalName})${addr}${report.buildId ? `, executable build-id ${report.buildId}` : ''}`;
+  const meaning = crashSignalMeaning(report.signal);
+  return `${report.module} crashed: signal ${report.signal} (${report.signalName})${addr}${meaning ? ` (${meaning})` : ''}${report.buildId ? `, executable build-id ${report.buildId}` : ''}`;
 }
 
 /** How a caller shows the file and line of a place whose file is known (`src-gen/.../module.c:248`). */

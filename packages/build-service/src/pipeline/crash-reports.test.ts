@@ -71,7 +71,7 @@ describe('crashSite: the first place in the project\'s code', () => {
   test('the site: file relative to the project, the region, the function; an error at that line', () => {
     const site = crashSite(report, parseAddr2line(OUT), ctx, 'src-gen', '/opt/contract/runtime')!;
     expect(site.said).toBe(' at src-gen/generated/architecture/modules/EST_mod/module.c:248 in its protected region protect_exec_EST (est_update)');
-    expect(site.diagnostic).toMatchObject({ severity: 'error', file: 'generated/architecture/modules/EST_mod/module.c', line: 248, protectedRegion: { id: 'protect_exec_EST' }, message: 'EST crashed here: signal 11 (SIGSEGV) at address 0x0, in est_update' });
+    expect(site.diagnostic).toMatchObject({ severity: 'error', file: 'generated/architecture/modules/EST_mod/module.c', line: 248, protectedRegion: { id: 'protect_exec_EST' }, message: 'EST crashed here: signal 11 (SIGSEGV) at address 0x0, in est_update: a bad pointer: NULL, freed, or past the end of an array', origin: 'run' });
     expect(site.frames).toEqual([
       // a frame in inlined code is one frame (crash-frames.ts, as contract trace tells it)
       '#0 est_update at src-gen/generated/architecture/modules/EST_mod/module.c:248 (inlined into _exec_module_state at src-gen/generated/architecture/modules/EST_mod/module.c:131)',

@@ -19,6 +19,7 @@
  * and only offsets (numbers) are passed to it.
  */
 import { posix } from 'node:path';
+import { crashSignalMeaning } from '@contract-studio/conventions';
 import { crashFrameTexts } from './crash-frames.js';
 import { located, relativeToRoot, type DiagnosticContext, type GccDiagnostic } from './gcc-diagnostics.js';
 
@@ -175,7 +176,7 @@ export function crashSiteOfLine(line: string): { module: string; said: string } 
 export interface CrashSite {
   /** ` at src-gen/generated/.../module.c:248 in its protected region protect_exec_EST (est_update)`. */
   said: string;
-  /** The Problems panel's error at that line (a place of the project only). */
+  /** The Problems panel's error at that line (a place of the project only), `origin: 'run'`, its message ending with what the signal means (`: an integer division by zero ...`). */
   diagnostic: GccDiagnostic | null;
   /** Each frame, as said with --verbose (crash-frames.ts): `#0 est_update at src-gen/...:248`, a frame in inlined code one line. */
   frames: string[];
@@ -206,7 +207,9 @@ export function crashSite(report: CrashReport, places: CrashPlace[][], ctx: Diag
     const region = d.protectedRegion ? ` in its protected region ${d.protectedRegion.id}` : '';
     const said = ` at ${shown(d.file!)}:${d.line}${region} (${place.function})`;
     const message = `${report.module} crashed here: signal ${report.signal} (${report.signalName})${report.signal === 11 || report.signal === 7 ? ` at address 0x${report.address}` : ''}, in ${place.function}`;
-    return { said, diagnostic: { ...d, message: message + d.message }, frames: told };
+    const meaning = crashSignalMeaning(report.signal);
+    // no compiler's diagnostic: the run's (the Problems panel labels it `run`)
+    return { said, diagnostic: { ...d, message: message + d.message + (meaning ? `: ${meaning}` : ''), origin: 'run' }, frames: told };
   }
   if (runtime) {
     const rel = runtimeFile(runtime.file!, ctx.cwd, runtimeDir)!;

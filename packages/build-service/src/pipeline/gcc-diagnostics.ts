@@ -20,6 +20,8 @@ export interface GccDiagnostic {
   endColumn?: number;
   protectedRegion: ProtectedRegion | null;
   children: GccDiagnostic[];
+  /** `run`: not a compiler's diagnostic but the run's (a module crashed at this line: crash-reports.ts); absent for gcc's and ld's. */
+  origin?: 'run';
 }
 
 /**

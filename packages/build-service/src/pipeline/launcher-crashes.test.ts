@@ -10,7 +10,7 @@ describe("the launcher's crashes, for a failed run's message", () => {
     expect(c.summary()).toBeUndefined();
     c.line('FAILED: module MSC crashed');
     c.line('FAILED: module MSC crashed');
-    expect(c.summary()).toBe('module MSC crashed (died by signal 11 (Segmentation fault) while the run stopped)');
+    expect(c.summary()).toBe('module MSC crashed (died by signal 11 (Segmentation fault) while the run stopped): a bad pointer: NULL, freed, or past the end of an array');
   });
 
   test('where a module crashed, when its crash site is known, after how it ended', () => {
@@ -18,10 +18,10 @@ describe("the launcher's crashes, for a failed run's message", () => {
     c.line('module EST (pid 21) died by signal 11 (Segmentation fault)');
     c.line('FAILED: module EST crashed');
     const sites = new Map([['EST', ' at src-gen/m.c:248 in its protected region protect_exec_EST (est_update)']]);
-    expect(c.summary(null, sites)).toBe('module EST crashed (died by signal 11 (Segmentation fault)) at src-gen/m.c:248 in its protected region protect_exec_EST (est_update)');
+    expect(c.summary(null, sites)).toBe('module EST crashed (died by signal 11 (Segmentation fault)) at src-gen/m.c:248 in its protected region protect_exec_EST (est_update): a bad pointer: NULL, freed, or past the end of an array');
     c.line('module PID (pid 22) died by signal 6 (Aborted)');
     c.line('FAILED: module PID crashed');
-    expect(c.summary(null, sites)).toBe('2 modules crashed: EST (died by signal 11 (Segmentation fault) at src-gen/m.c:248 in its protected region protect_exec_EST (est_update)), PID (died by signal 6 (Aborted))');
+    expect(c.summary(null, sites)).toBe('2 modules crashed: EST (died by signal 11 (Segmentation fault) at src-gen/m.c:248 in its protected region protect_exec_EST (est_update): a bad pointer: NULL, freed, or past the end of an array), PID (died by signal 6 (Aborted): the code called abort(), or an assert() failed: its message is on stderr)');
   });
 
   test('several: each named with how it ended, the fifth on counted', () => {
@@ -31,7 +31,7 @@ describe("the launcher's crashes, for a failed run's message", () => {
       c.line(`FAILED: module ${m} crashed`);
     }
     // an exit with a status is no crash: each said as it ended
-    expect(c.summary()).toBe('5 modules failed: A failed (exited with status 3), B crashed (died by signal 6 (Aborted)), C failed (exited with status 3 while the run stopped), D failed (exited with status 1) and 1 more');
+    expect(c.summary()).toBe('5 modules failed: A failed (exited with status 3), B crashed (died by signal 6 (Aborted)): the code called abort(), or an assert() failed: its message is on stderr, C failed (exited with status 3 while the run stopped), D failed (exited with status 1) and 1 more');
   });
 
   test("a kill (a SIGKILL the launcher did not send) is told apart from a crash, by the memory limit when that limit was hit", () => {
@@ -43,7 +43,7 @@ describe("the launcher's crashes, for a failed run's message", () => {
     expect(c.summary({ name: 'memory' })).toBe('module HOG was killed by the memory limit (died by signal 9 (Killed))');
     c.line('module MSC (pid 31) died by signal 11 (Segmentation fault)');
     c.line('FAILED: module MSC crashed');
-    expect(c.summary({ name: 'memory' })).toBe('2 modules crashed or were killed by the memory limit: HOG (killed: died by signal 9 (Killed)), MSC (died by signal 11 (Segmentation fault))');
+    expect(c.summary({ name: 'memory' })).toBe('2 modules crashed or were killed by the memory limit: HOG (killed: died by signal 9 (Killed)), MSC (died by signal 11 (Segmentation fault): a bad pointer: NULL, freed, or past the end of an array)');
     // an older launcher said `crashed` for a kill too: its signal 9 line tells
     const old = new LauncherCrashes();
     old.line('module HOG (pid 30) died by signal 9 (Killed) while the run stopped');
@@ -60,7 +60,7 @@ describe("the launcher's crashes, for a failed run's message", () => {
     expect(c.summary()).toBe('module MAB did not start: its init region returned 0 (exited with status 255)');
     c.line('module MSC (pid 64) died by signal 11 (Segmentation fault)');
     c.line('FAILED: module MSC crashed');
-    expect(c.summary()).toBe('2 modules failed: MAB did not start: its init region returned 0 (exited with status 255), MSC crashed (died by signal 11 (Segmentation fault))');
+    expect(c.summary()).toBe('2 modules failed: MAB did not start: its init region returned 0 (exited with status 255), MSC crashed (died by signal 11 (Segmentation fault)): a bad pointer: NULL, freed, or past the end of an array');
     // an exit with a status without that line: failed, not crashed
     const d = new LauncherCrashes();
     d.line('module CTL (pid 70) exited with status 3');

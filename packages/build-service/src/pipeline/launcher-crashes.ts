@@ -10,6 +10,7 @@
  */
 import { launcherEndLine } from '../trace/launcher-end-line.js';
 
+import { crashSignalMeaning } from '@contract-studio/conventions';
 /** The launcher's `died by signal 9 (Killed)`, `... while the run stopped`: a SIGKILL it did not send (it terminates with SIGTERM, and says `terminated`). */
 const SIGKILLED = /^died by signal 9 \(Killed\)( while the run stopped)?$/;
 /** `died by signal S (...)` or `exited with status N`; `was killed (a SIGKILL the launcher did not send: ...)`; `crashed` (an older launcher's, for both of the first). */
@@ -45,6 +46,17 @@ export function failureWords(f: LauncherFailure): string {
   const how = f.how ?? 'no exit line';
   if (f.initRefused) return `did not start: its init region returned 0 (${how})`;
   return crashedBySignal(f) ? `crashed (${how})` : `failed (${how})`;
+}
+
+/**
+ * `: <what its signal means>` for a module that crashed by a crash signal (`died by signal 8
+ * (Floating point exception)`: `: an integer division by zero, or INT_MIN / -1`, conventions'
+ * crash-signals.ts), told after where it crashed; '' for any other failure.
+ */
+export function crashMeaningText(f: LauncherFailure): string {
+  const m = crashedBySignal(f) && f.how ? /^died by signal (\d{1,2})\b/.exec(f.how) : null;
+  const meaning = m ? crashSignalMeaning(Number(m[1])) : undefined;
+  return meaning ? `: ${meaning}` : '';
 }
 
 export class LauncherCrashes {
@@ -90,14 +102,14 @@ export class LauncherCrashes {
     if (!failures.length) return undefined;
     const by = limitHit?.name === 'memory' ? ' by the memory limit' : '';
     // where it crashed (` at FILE:LINE ...`: crash-reports.ts), after how it ended
-    const how = (f: LauncherFailure) => `${f.how ?? 'no exit line'}${f.killed ? '' : sites?.get(f.module) ?? ''}`;
+    const how = (f: LauncherFailure) => `${f.how ?? 'no exit line'}${f.killed ? '' : `${sites?.get(f.module) ?? ''}${crashMeaningText(f)}`}`;
     if (failures.length === 1) {
       const f = failures[0]!;
-      return `module ${f.module} ${f.killed ? `was killed${by} (${f.how ?? 'no exit line'})` : `${failureWords(f)}${sites?.get(f.module) ?? ''}`}`;
+      return `module ${f.module} ${f.killed ? `was killed${by} (${f.how ?? 'no exit line'})` : `${failureWords(f)}${sites?.get(f.module) ?? ''}${crashMeaningText(f)}`}`;
     }
     // one ended with a status (its init refused to start, its code's exit): each said as it was
     if (failures.some((f) => !f.killed && !crashedBySignal(f))) {
-      const named = failures.slice(0, NAMED).map((f) => `${f.module} ${f.killed ? `was killed${by} (${f.how ?? 'no exit line'})` : `${failureWords(f)}${crashedBySignal(f) ? sites?.get(f.module) ?? '' : ''}`}`).join(', ');
+      const named = failures.slice(0, NAMED).map((f) => `${f.module} ${f.killed ? `was killed${by} (${f.how ?? 'no exit line'})` : `${failureWords(f)}${crashedBySignal(f) ? `${sites?.get(f.module) ?? ''}${crashMeaningText(f)}` : ''}`}`).join(', ');
       return `${failures.length} modules failed: ${named}${failures.length > NAMED ? ` and ${failures.length - NAMED} more` : ''}`;
     }
     const killed = failures.filter((f) => f.killed).length;

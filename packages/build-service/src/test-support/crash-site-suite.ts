@@ -50,7 +50,7 @@ export function crashSiteSuite(sandbox: SandboxName, served: TestBuildServer): v
       const buildId = /build-id ([0-9a-f]{40})/.exec(await (await fetch(`${served.url}/api/jobs/${job.id}/artifacts/MAA.crash`)).text())![1];
       const listing = await (await fetch(`${served.url}/api/jobs/${job.id}/artifacts`)).json() as { artifacts: { crashSites?: string[] } };
       expect(listing.artifacts.crashSites).toEqual([
-        `MAA crashed: signal 11 (SIGSEGV) at address 0x0, executable build-id ${buildId}`,
+        `MAA crashed: signal 11 (SIGSEGV) at address 0x0 (a bad pointer: NULL, freed, or past the end of an array), executable build-id ${buildId}`,
         ...service.filter((l) => l.startsWith('MAA crash frame ')).map((l) => `  ${l.slice('MAA crash frame '.length)}`),
       ]);
     });

@@ -6,7 +6,7 @@
  * completions and deliveries are counted, not told one by one. Pure: returns the lines.
  */
 import { posingText } from './log-clock.js';
-import { formatNanoseconds, STUCK_ADVICE } from '@contract-studio/conventions';
+import { formatNanoseconds, STUCK_ADVICE, withCrashMeaning } from '@contract-studio/conventions';
 import { ownString, parseCause } from './parse.js';
 import { confirmingHold, type ConfirmingHold } from './action-holds.js';
 import { missedTicksOf, skippedReleasesOf } from './ord-counts.js';
@@ -75,9 +75,15 @@ export function unheardEventText(port: string): string {
   return `event ${port} posted with no subscriber: no one received it (no supervisor or module subscribed to ${port} then)`;
 }
 
-/** `crashed: signal 11 (SIGSEGV)` for a `module_crashed` record's detail (its record count left to the log's checks). */
-export function crashText(detail: string): string {
-    return `crashed: ${detail.replace(/ records=\d+$/, '')}`;
+/**
+ * `crashed: signal 11 (SIGSEGV): a bad pointer: NULL, freed, or past the end of an array` for a
+ * `module_crashed` record's detail, with what its signal means (conventions' crash-signals.ts; its
+ * record count left to the log's checks): `contract trace`'s line and the IDE Monitor's crash line;
+ * without it (`meaning` false) where the crash is recalled later (`it had exited before (crashed: signal 11 (SIGSEGV))`).
+ */
+export function crashText(detail: string, meaning = true): string {
+    const told = `crashed: ${detail.replace(/ records=\d+$/, '')}`;
+    return meaning ? withCrashMeaning(told) : told;
 }
 
 /**
@@ -497,7 +503,7 @@ export class StoryTeller {
         }
         if (k.kind === 'module_crashed') {
             const crash = crashText(k.detail);
-            if (this.exited.has(k.module) || this.exited.size < STORY_FOLLOWED) this.exited.set(ownString(k.module), ownString(crash.slice(0, 120)));
+            if (this.exited.has(k.module) || this.exited.size < STORY_FOLLOWED) this.exited.set(ownString(k.module), ownString(crashText(k.detail, false).slice(0, 120)));
             return `${at(k)} ${crash}${this.unservedUndoText(k.module)}`;
         }
         if (k.kind === 'data_dropped') {

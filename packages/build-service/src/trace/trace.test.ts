@@ -527,7 +527,7 @@ describe('reading a log', () => {
             '2502000000,w,ORD,scheduler,,,0,stuck: SPC has not finished release #228 after 50 periods: does its exec region set *stateindex = -1? (conveyor)',
         ]);
         expect(segv.slice(0, 2)).toEqual([
-            '+0.000000s SPC  crashed: signal 11 (SIGSEGV)',
+            '+0.000000s SPC  crashed: signal 11 (SIGSEGV): a bad pointer: NULL, freed, or past the end of an array',
             '+1.002000s ORD  stuck: SPC has not finished release #228 after 50 periods: it had exited before (crashed: signal 11 (SIGSEGV)) (conveyor)',
         ]);
         // started again after its exit: a later stuck report gets ORD's advice again

@@ -2,7 +2,7 @@
  * What went wrong in a `contract run`, as told to the user: the modules the launcher saw crash, and
  * the run's problems with ORD's `*stateindex` advice left out for a module that crashed.
  */
-import { crashSiteOfLine, failureWords, LauncherCrashes } from '@contract-studio/build-service';
+import { crashMeaningText, crashSiteOfLine, failureWords, LauncherCrashes } from '@contract-studio/build-service';
 import { STUCK_ADVICE } from '@contract-studio/conventions';
 import type { JobOutcome } from '../job-runner.js';
 
@@ -25,16 +25,18 @@ export interface ModuleFailure {
 }
 
 /**
- * `CTL crashed (died by signal 11 (Segmentation fault))`, `MAB did not start: its init region
+ * `CTL crashed (died by signal 11 (Segmentation fault)) at FILE:LINE ...: a bad pointer: NULL, ...` (what the signal means last), `MAB did not start: its init region
  * returned 0 (exited with status 255)`, `CTL failed (exited with status 3)`, `CTL was killed by the
  * memory limit (...)`: the line `contract run` prints after `module `.
  */
 export function failureText(f: ModuleFailure): string {
-    return f.message ?? `${f.module} ${whatHappened(f)}${f.site ?? ''}`;
+    return f.message ?? `${f.module} ${whatHappened(f)}${f.site ?? ''}${crashMeaningText(asLauncherFailure(f))}`;
 }
 
+const asLauncherFailure = (f: ModuleFailure) => ({ module: f.module, how: f.how, killed: false, initRefused: f.initRefused === true });
+
 /** A failure not killed, in the build service's words (launcher-crashes.ts). */
-const whatHappened = (f: ModuleFailure): string => failureWords({ module: f.module, how: f.how, killed: false, initRefused: f.initRefused === true });
+const whatHappened = (f: ModuleFailure): string => failureWords(asLauncherFailure(f));
 
 /** Why the kernel's OOM killer chose it, as `contract run` says it. */
 const OOM_KILL = "signal 9: the kernel's OOM killer, which kills the process using the most memory";

@@ -44,14 +44,14 @@ export function connectProblems(d: ProblemsDeps): void {
   problems.onOpen.on((p) => {
     if (p.path !== BUILD_WITHOUT_FILE) void editors.open(p.path, { lineNumber: p.line, column: p.column });
   });
-  // gcc diagnostics also become squiggles in the generated files (owner 'gcc'), when they are open
+  // the build's diagnostics (gcc's, and the run's crash site: source `run`) also become squiggles in the generated files (owner 'gcc'), when they are open
   let gccMarked = new Set<string>();
   const applyGccMarkers = () => {
     const byPath = new Map<string, monaco.editor.IMarkerData[]>();
-    for (const p of problems.all().filter((q) => q.source === 'gcc' && q.path !== BUILD_WITHOUT_FILE)) {
+    for (const p of problems.all().filter((q) => (q.source === 'gcc' || q.source === 'run') && q.path !== BUILD_WITHOUT_FILE)) {
       const list = byPath.get(p.path) ?? byPath.set(p.path, []).get(p.path)!;
       const sev = p.severity === 'error' ? monaco.MarkerSeverity.Error : p.severity === 'warning' ? monaco.MarkerSeverity.Warning : monaco.MarkerSeverity.Info;
-      list.push({ severity: sev, message: p.message, source: 'gcc', startLineNumber: p.line, startColumn: p.column, endLineNumber: p.line, endColumn: p.column + 1 });
+      list.push({ severity: sev, message: p.message, source: p.source, startLineNumber: p.line, startColumn: p.column, endLineNumber: p.line, endColumn: p.column + 1 });
     }
     for (const path of new Set([...gccMarked, ...byPath.keys()])) {
       const model = workspace.files.get(path)?.model;

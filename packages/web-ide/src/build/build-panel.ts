@@ -17,6 +17,8 @@ export interface GccDiagnostic {
   line: number | null;
   column: number | null;
   protectedRegion?: { id: string } | null;
+  /** `run`: the run's, not a compiler's (a module crashed at this line); absent for gcc's and ld's. */
+  origin?: 'run';
 }
 
 /** What a job is asked to do beside its action (the run settings: docs/build-service-api.md, the job request). */

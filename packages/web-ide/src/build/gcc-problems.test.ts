@@ -24,4 +24,11 @@ describe('a build\'s diagnostics as Problems rows', () => {
       [BUILD_WITHOUT_FILE, 1, "/usr/include/stddef.h:209: conflicting types for 'size_t'"],
     ]);
   });
+
+  it('a crash the run found (origin run) is labelled run, not gcc: no compiler said it', () => {
+    const [row] = gccProblems([
+      { severity: 'error', message: 'CTL crashed here: signal 8 (SIGFPE), in _exec: an integer division by zero, or INT_MIN / -1', file: 'generated/architecture/modules/CTL_mod/module.c', line: 244, column: null, protectedRegion: { id: 'protect_exec_CTL' }, origin: 'run' },
+    ], 'linebot/src-gen/');
+    expect(row).toMatchObject({ path: 'linebot/src-gen/generated/architecture/modules/CTL_mod/module.c', line: 244, severity: 'error', source: 'run' });
+  });
 });

@@ -2,7 +2,9 @@
  * A build's diagnostics (gcc's, the assembler's, the linker's: docs/build-service-api.md "gcc
  * diagnostic") as rows of the Problems panel: a file of the project's src-gen opens at its line
  * and column; one with no place in the project (the linker's `cannot find -lx`, a system header)
- * is listed under BUILD_WITHOUT_FILE, its place in its message, and opens nothing. Pure.
+ * is listed under BUILD_WITHOUT_FILE, its place in its message, and opens nothing. Each is labelled
+ * by where it comes from: `gcc` (the compiler, the assembler, the linker), or `run` for a
+ * diagnostic of the run (`origin: 'run'`: a module crashed at that line). Pure.
  */
 import type { Problem } from '../panels/problems.js';
 import type { GccDiagnostic } from './build-panel.js';
@@ -17,6 +19,6 @@ export function gccProblems(diags: readonly GccDiagnostic[], srcGen: string): Pr
       ? { path: BUILD_WITHOUT_FILE, line: 1, column: 1, message: `${x.file ? `${x.file}:${x.line ?? 0}: ` : ''}${x.message}` }
       : { path: srcGen + x.file, line: x.line ?? 1, column: x.column || 1, message: x.message + (x.protectedRegion ? ` (in region ${x.protectedRegion.id})` : '') }),
     severity: x.severity === 'note' ? 'info' : x.severity,
-    source: 'gcc',
+    source: x.origin === 'run' ? 'run' : 'gcc',
   }));
 }

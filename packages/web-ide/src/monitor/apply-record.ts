@@ -474,7 +474,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       if (!m) return;
       m.alive = k.kind === 'module_started';
       if (!m.alive) m.running = false;
-      if (k.kind === 'module_crashed') m.crashed = crashText(k.detail).slice(0, 120);
+      if (k.kind === 'module_crashed') m.crashed = crashText(k.detail).slice(0, 160);
       else if (k.kind === 'module_started') m.crashed = undefined;
       m.gone = undefined;
       m.since = t;

@@ -834,7 +834,7 @@ function markOf({ t, r }: Timed, late: string): Mark | undefined {
   const k = r as KnownRecord;
   const what = k.fields?.['what'];
   // a module's code crashed (the runtime's signal handler wrote the record as it died), in contract trace's words
-  if (k.kind === 'module_crashed') return { t, kind: 'crash', where: k.module, label: crashText(k.detail).slice(0, 120) };
+  if (k.kind === 'module_crashed') return { t, kind: 'crash', where: k.module, label: crashText(k.detail).slice(0, 160) };
   if (k.kind === 'ord_deadline_miss') return { t, kind: 'miss', where: String(k.fields['schema'] ?? '?'), label: `deadline miss (ORD:0) cycle ${k.fields['cycle'] ?? '?'}${late}` };
   // ORD's answers to a supervisor's requests for a periodic schema, its ignored undo of an activation it does not serve included (ignoredUndo: as `contract trace` tells it)
   if (k.kind === 'scheduler' && (what === 'activate' || what === 'deactivate' || what === 'conflict' || ignoredUndo(k))) return { t, kind: 'schema', where: String(k.fields['schema'] ?? '?'), label: k.detail.slice(0, 120) };

@@ -80,11 +80,11 @@ describe('an event posted with no subscriber', () => {
 describe('a module whose code crashed', () => {
   it('is said crashed from its module_crashed record on, marked on the strip in contract trace\'s words, live, parsed and recorded alike', () => {
     const story = told('EST  crashed');
-    expect(story).toBe('crashed: signal 11 (SIGSEGV)');
+    expect(story).toBe('crashed: signal 11 (SIGSEGV): a bad pointer: NULL, freed, or past the end of an array');
     for (const m of models()) {
       expect(m.marks.filter((k) => k.kind === 'crash').map((k) => [k.t, k.where, k.label])).toEqual([[t(5240958000), 'EST', story]]);
       expect(m.live.modules.get('EST')).toMatchObject({ alive: false, running: false, crashed: story, since: t(5240958000) });
-      expect(crashedModulesText(m.live.modules)).toBe('⚠ EST crashed at +4.240958 s: signal 11 (SIGSEGV)');
+      expect(crashedModulesText(m.live.modules)).toBe('⚠ EST crashed at +4.240958 s: signal 11 (SIGSEGV): a bad pointer: NULL, freed, or past the end of an array');
       // scrubbed back before it: not crashed yet
       expect(crashedModulesText(m.stateAt(t(5240958000) - 1)!.modules)).toBe('');
     }
@@ -95,7 +95,7 @@ describe('a module whose code crashed', () => {
     const filler = Array.from({ length: 200 }, (_, i) => parseRecordLine('BAR_1.csv', i + 2, `${5300000000 + i * 1000},${W},BAR,data_posted,EST,0,16,to_port=0`));
     m.pushAll([...LINES.map((l) => parseRecordLine(l.file, l.line, l.text)), ...filler]);
     expect(m.exactAt(t(5240958000) + 1)).toBe(false);
-    expect(m.stateAt(t(5240958000) + 1)!.modules.get('EST')?.crashed).toBe('crashed: signal 11 (SIGSEGV)');
+    expect(m.stateAt(t(5240958000) + 1)!.modules.get('EST')?.crashed).toBe('crashed: signal 11 (SIGSEGV): a bad pointer: NULL, freed, or past the end of an array');
   });
 
   it('is no longer said crashed once started again', () => {

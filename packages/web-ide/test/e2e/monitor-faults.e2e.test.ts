@@ -57,14 +57,14 @@ describe('Monitor: an event no one received, a module that crashed', () => {
   it('a recorded run: Deliveries lists the event no one received first, EST is said crashed, both marked in contract trace\'s words', async () => {
     const { page } = s;
     expect(UNHEARD).toBe('+0.336166s event GCS:1 posted with no subscriber: no one received it (no supervisor or module subscribed to GCS:1 then); its later ones are counted at the end');
-    expect(CRASH).toBe('+0.432425s crashed: signal 11 (SIGSEGV)');
+    expect(CRASH).toBe('+0.432425s crashed: signal 11 (SIGSEGV): a bad pointer: NULL, freed, or past the end of an array');
     if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
     await page.locator('.side-pane .monitor-view').waitFor();
     await page.locator('.monitor-sources').selectOption('dir:faults');
     await expect.poll(() => label(page)).toBe('8 CSV log(s) in faults');
     expect(await marksOf(page, 'unheard')).toEqual([UNHEARD.replace('+0.336166s ', '+0.336166s GCS: ').replace('its later ones are counted at the end', 'Deliveries counts its later ones')]);
-    expect(await marksOf(page, 'crash')).toEqual(['+0.432425s EST: crashed: signal 11 (SIGSEGV)']);
-    await expect.poll(() => crashed(page)).toBe('⚠ EST crashed at +0.432425 s: signal 11 (SIGSEGV)');
+    expect(await marksOf(page, 'crash')).toEqual(['+0.432425s EST: crashed: signal 11 (SIGSEGV): a bad pointer: NULL, freed, or past the end of an array']);
+    await expect.poll(() => crashed(page)).toBe('⚠ EST crashed at +0.432425 s: signal 11 (SIGSEGV): a bad pointer: NULL, freed, or past the end of an array');
     // drawn with the diagram, once it is made
     await expect.poll(() => modules(page)).toMatch(/^Running now: .*· crashed: EST/);
     await expect.poll(() => unheardRows(page)).toEqual(['┅ GCS:1 → no subscriber ×1 · no one received it · last +0.336166 s']);
@@ -85,7 +85,7 @@ describe('Monitor: an event no one received, a module that crashed', () => {
     }
     expect(said).toContainEqual(expect.stringContaining('+0.336166 s GCS: event GCS:1 posted with no subscriber: no one received it'));
     expect(said.at(-1)).toContain('+0.432425 s EST: crashed: signal 11 (SIGSEGV)');
-    await expect.poll(() => crashed(page)).toBe('⚠ EST crashed at +0.432425 s: signal 11 (SIGSEGV)');
+    await expect.poll(() => crashed(page)).toBe('⚠ EST crashed at +0.432425 s: signal 11 (SIGSEGV): a bad pointer: NULL, freed, or past the end of an array');
   }, 90_000);
 
   it('a live run: EST is said crashed as its record comes, before the job ends; the ended job\'s long message is shortened at a word in the run list', async () => {
@@ -108,7 +108,7 @@ describe('Monitor: an event no one received, a module that crashed', () => {
       // the crash record comes: said at once (an alert), the job still going
       const sent = Date.now();
       socket!.send(JSON.stringify({ type: 'trace', seq: 2, t: Date.now(), ...encodeTraceRecords(LINES.slice(crash, crash + 1)) }));
-      await expect.poll(() => crashed(page), { interval: 10 }).toBe('⚠ EST crashed at +0.432425 s: signal 11 (SIGSEGV)');
+      await expect.poll(() => crashed(page), { interval: 10 }).toBe('⚠ EST crashed at +0.432425 s: signal 11 (SIGSEGV): a bad pointer: NULL, freed, or past the end of an array');
       console.log(`crash record sent → said by the Monitor: ${Date.now() - sent} ms`);
       await expect.poll(() => modules(page)).toMatch(/^Running now: .*· crashed: EST/);
       expect(await label(page)).toBe('Build & Run job faults · live');

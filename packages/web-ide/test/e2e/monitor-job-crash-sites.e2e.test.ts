@@ -56,7 +56,7 @@ describe.skipIf(!canBuild)('Monitor: the replay of a job whose module crashed', 
     await expect.poll(() => option.count(), { timeout: 20_000 }).toBe(1);
     await page.locator('.monitor-sources').selectOption((await option.getAttribute('value'))!);
     const label = () => page.locator('.monitor-source').textContent();
-    await expect.poll(label, { timeout: 20_000 }).toContain(' — crash sites (mapped by the build service): MAA crashed: signal 11 (SIGSEGV) at address 0x0, executable build-id ');
+    await expect.poll(label, { timeout: 20_000 }).toContain(' — crash sites (mapped by the build service): MAA crashed: signal 11 (SIGSEGV) at address 0x0 (a bad pointer: NULL, freed, or past the end of an array), executable build-id ');
     const said = (await label())!;
     expect(said).toContain(`; #0 store_bad at ${MAA_C}:${crashLine} (inlined into _exec_module_state at ${MAA_C}:${callLine}); `);
     expect(said).toMatch(/; #\d+ main at runtime\/src\/module_main\.c:\d+;/);
