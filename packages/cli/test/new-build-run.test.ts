@@ -415,7 +415,7 @@ describe('contract build / run on a project (bwrap)', () => {
         // period between the looks, so the line asks whether its exec region loops, not whether
         // it is starved (runtime/src/engines/ord_stuck_cause.c)
         expect(io.stderr).toMatch(
-            /^\[ORD\] STUCK: CTL has not finished release #\d+ after \d+ periods: does its exec region loop, or never set \*stateindex = -1\? \(it ran \d+% of the last [\d.]+ s\)$/m,
+            /^\[ORD\] STUCK: CTL has not finished release #\d+ after \d+ periods: does its exec region loop, or never set \*stateindex = -1\? \(its thread got \d+% of a CPU in the last [\d.]+ s, more than a period needs; a loaded machine gives it less\)$/m,
         );
         // one line when the cycle begins to overrun (naming the module it still runs), not one per tick; and, when the schema is deactivated
         // before ORD stops, one saying how many releases the cycle skipped in all

@@ -250,7 +250,8 @@ static int b_module_gone(void *ctx, const char *module) {
 /* A look at a running module's main thread for a stuck report (ord_stuck_cause.h): its pid from
    <run dir>/<module>.pid (written by the module at start-up), then in /proc/<pid>/task/<pid>/:
    the state letter from `stat`, the CPU time and the time spent waiting for a CPU from
-   `schedstat` (ns; without it, stat's utime + stime and an unknown wait). Asked at most twice per
+   `schedstat` (ns; without it, stat's utime + stime and an unknown wait), the kernel function it
+   sleeps in from `wchan` (a write to a full pipe: ord_activity_writing_to_full_pipe). Asked at most twice per
    stuck release. -1 when the pid or stat cannot be read (the report then keeps the question). */
 static int b_module_activity(void *ctx, const char *module, OrdModuleActivity *out) {
     (void)ctx;
@@ -282,6 +283,16 @@ static int b_module_activity(void *ctx, const char *module, OrdModuleActivity *o
     out->state = state;
     out->cpu_ns = (int64_t)((utime + stime) * (1000000000ULL / (unsigned long long)hz));
     out->wait_ns = -1;
+    out->waiting_in[0] = '\0';
+    /* the kernel function it sleeps in ("0" when running, or hidden from this process) */
+    snprintf(path, sizeof path, "/proc/%ld/task/%ld/wchan", pid, pid);
+    f = fopen(path, "r");
+    if (f) {
+        size_t got_chars = fread(out->waiting_in, 1, sizeof out->waiting_in - 1, f);
+        out->waiting_in[got_chars] = '\0';
+        out->waiting_in[strcspn(out->waiting_in, "\n")] = '\0';
+        fclose(f);
+    }
     snprintf(path, sizeof path, "/proc/%ld/task/%ld/schedstat", pid, pid);
     f = fopen(path, "r");
     if (f) {

@@ -4,12 +4,25 @@
 #include "ord_stuck_cause.h"
 
 #include <stdio.h>
+#include <string.h>
 
 /* a thread that runs at least this share of the wall time is running its code, not starved; one
    ready to run (running or waiting for a CPU) that long wants the CPU */
 #define RUNNING_SHARE_PERCENT 50
 
 #define WAITING "it is waiting, not running (a sleep, a read, a lock or a send to a full mailbox in its exec region?)"
+
+#define WRITING_OUTPUT                                                                                         \
+    "it is blocked writing its output: the pipe is full (it prints faster than the run's output is read): does " \
+    "its exec region print too much?"
+
+int ord_activity_writing_to_full_pipe(const OrdModuleActivity *a) {
+    if (!a || (a->state != 'S' && a->state != 'D')) return 0;
+    /* the kernel's names for a writer waiting for room in a pipe: pipe_write (up to 6.x),
+       anon_pipe_write (6.15 on), pipe_wait_writable (5.6 on, when not inlined) */
+    return strcmp(a->waiting_in, "pipe_write") == 0 || strcmp(a->waiting_in, "anon_pipe_write") == 0 ||
+           strcmp(a->waiting_in, "pipe_wait_writable") == 0;
+}
 
 static long percent_of(int64_t part, int64_t whole) {
     return part >= whole ? 100 : (long)(part * 100 / whole);
@@ -27,6 +40,10 @@ const char *ord_stuck_cause(const OrdModuleActivity *then, int64_t then_t, const
     }
     if (now->state == 'T' || now->state == 't') {
         snprintf(buf, n, "it is stopped (by SIGSTOP, or a debugger holds it)");
+        return buf;
+    }
+    if (ord_activity_writing_to_full_pipe(now)) {
+        snprintf(buf, n, "%s", WRITING_OUTPUT);
         return buf;
     }
     int64_t wall = now_t - then_t;
@@ -47,7 +64,9 @@ const char *ord_stuck_cause(const OrdModuleActivity *then, int64_t then_t, const
     /* more CPU than a period of its schema and not done: no starvation explains it (a loaded
        machine or the real-time budget may hold a loop under half a CPU) */
     if (ran >= RUNNING_SHARE_PERCENT || (period_ns > 0 && cpu > period_ns))
-        snprintf(buf, n, "does its exec region loop, or never set *stateindex = -1? (it ran %ld%% of the last %.1f s)",
+        snprintf(buf, n,
+                 "does its exec region loop, or never set *stateindex = -1? (its thread got %ld%% of a CPU in the "
+                 "last %.1f s, more than a period needs; a loaded machine gives it less)",
                  ran, seconds);
     else if (wanted >= RUNNING_SHARE_PERCENT || (!wait_known && now->state != 'S' && now->state != 'D'))
         snprintf(buf, n, "it wanted the CPU but got only %ld%% of it in the last %.1f s: do processes at real-time "

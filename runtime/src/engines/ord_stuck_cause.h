@@ -12,6 +12,8 @@
  *    mailbox;
  *  - ready to run most of the time but given less CPU than that: starved by processes at
  *    real-time priority or a machine loaded past its CPUs;
+ *  - asleep in a write to a full pipe at the last look (its wchan): blocked on its own output,
+ *    printed faster than the run's output is read (a printf flood), not looping;
  * and says a module that has ended (a zombie: "no longer running", as OrdIo.module_gone) or is
  * stopped (SIGSTOP, a debugger).
  * Without both looks (no module_activity, the module's /proc entry unreadable, a release
@@ -25,12 +27,21 @@
 
 /** One look at a module's main thread: its scheduler state ('R' running or ready, 'S' sleeping,
  *  'D' uninterruptible wait, ...: /proc's letter), the CPU time it has used and the time it has
- *  spent ready to run but waiting for a CPU (-1: unknown), in ns. */
+ *  spent ready to run but waiting for a CPU (-1: unknown), in ns, and the kernel function it
+ *  sleeps in (/proc's `wchan`: `anon_pipe_write`, `pipe_write` or `pipe_wait_writable` for a write
+ *  to a full pipe; "" when not known or not sleeping). */
 typedef struct OrdModuleActivity {
     char state;
     int64_t cpu_ns;
     int64_t wait_ns;
+    char waiting_in[32];
 } OrdModuleActivity;
+
+/** Whether a look shows the thread asleep in a write to a full pipe (its stdout or stderr, read
+ *  by contract-launch: the module prints faster than the run's output is read). Only the kernel's
+ *  functions that wait for room in a pipe count (an older kernel's `pipe_wait`, shared by reads
+ *  and writes, does not). */
+int ord_activity_writing_to_full_pipe(const OrdModuleActivity *a);
 
 /** The advice ORD gives when it cannot tell (no look at the module). */
 #define ORD_STUCK_ADVICE "does its exec region set *stateindex = -1?"

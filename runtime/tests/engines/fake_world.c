@@ -449,7 +449,13 @@ static int o_module_activity(void *ctx, const char *m, OrdModuleActivity *out) {
     out->state = w->act_state[i];
     out->cpu_ns = w->act_cpu[i];
     out->wait_ns = w->act_wait_step[i] < 0 ? -1 : w->act_wait[i];
+    snprintf(out->waiting_in, sizeof out->waiting_in, "%s", w->act_waiting_in[i]);
     return 0;
+}
+
+void fake_set_waiting_in(FakeWorld *w, const char *module, const char *wchan) {
+    int i = activity_index(w, module);
+    if (i >= 0) snprintf(w->act_waiting_in[i], sizeof w->act_waiting_in[0], "%s", wchan);
 }
 
 void fake_set_activity(FakeWorld *w, const char *module, char state, int64_t cpu_step_ns, int64_t wait_step_ns) {
@@ -460,6 +466,7 @@ void fake_set_activity(FakeWorld *w, const char *module, char state, int64_t cpu
         snprintf(w->act_module[i], sizeof w->act_module[0], "%s", module);
     }
     w->act_state[i] = state;
+    w->act_waiting_in[i][0] = '\0';
     w->act_step[i] = cpu_step_ns;
     w->act_wait_step[i] = wait_step_ns;
 }

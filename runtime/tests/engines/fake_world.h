@@ -51,6 +51,7 @@ typedef struct FakeWorld {
     int nact;
     char act_module[FW_MAX][16];
     char act_state[FW_MAX];
+    char act_waiting_in[FW_MAX][32]; /* the wchan each look answers (fake_set_waiting_in), "" by default */
     int64_t act_step[FW_MAX], act_cpu[FW_MAX], act_wait_step[FW_MAX], act_wait[FW_MAX];
     int act_looks[FW_MAX];
     /* SupIo.module_run_ended: the modules whose run ended by their own code (fake_end_own_run),
@@ -74,6 +75,8 @@ void fake_set_gone(FakeWorld *w, const char *module);
 /** Lets OrdIo.module_activity look at `module`: in scheduler state `state`, its CPU time going
  *  `cpu_step_ns` further at each look and its wait for a CPU `wait_step_ns` (< 0: unknown). */
 void fake_set_activity(FakeWorld *w, const char *module, char state, int64_t cpu_step_ns, int64_t wait_step_ns);
+/** The kernel function `module`'s looks say it sleeps in (its wchan: `anon_pipe_write`), after fake_set_activity. */
+void fake_set_waiting_in(FakeWorld *w, const char *module, const char *wchan);
 /** How many times OrdIo.module_activity looked at `module`. */
 int fake_activity_looks(const FakeWorld *w, const char *module);
 /** The id of the latest ORD release of `module` (0: never released). */

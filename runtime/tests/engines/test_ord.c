@@ -511,11 +511,12 @@ void test_ord_stuck_report_of_a_module_no_longer_running(void) {
    or more CPU time than its 200 ms period, is asked whether its exec region loops; one that ran 3% while ready to run 90% of it is
    starved; one that ran 3% and waited for a CPU 2% slept: it waits, whatever its state at the
    last look. One look at each point, not one per tick. */
-static void stuck_with_activity(char state, int64_t cpu_step_ns, int64_t wait_step_ns, const char *cause) {
+static void stuck_waiting_in(char state, int64_t cpu_step_ns, int64_t wait_step_ns, const char *wchan, const char *cause) {
     FakeWorld w;
     OrdCore *c = make(&w);
     if (!c) { CHECK(0); return; }
     fake_set_activity(&w, "G", state, cpu_step_ns, wait_step_ns);
+    fake_set_waiting_in(&w, "G", wchan);
     ord_core_activate(c, 0, "SLW", NULL, 0, "SUP", 1);
     uint32_t g = fake_last_release(&w, "G");
     ord_core_advance(c, 1900 * MS);
@@ -534,8 +535,19 @@ static void stuck_with_activity(char state, int64_t cpu_step_ns, int64_t wait_st
     ord_core_destroy(c);
 }
 
-#define LOOPS "does its exec region loop, or never set *stateindex = -1? (it ran 97% of the last 1.0 s)"
-#define LOOPS_HELD "does its exec region loop, or never set *stateindex = -1? (it ran 30% of the last 1.0 s)"
+static void stuck_with_activity(char state, int64_t cpu_step_ns, int64_t wait_step_ns, const char *cause) {
+    stuck_waiting_in(state, cpu_step_ns, wait_step_ns, "", cause);
+}
+
+#define LOOPS                                                                                                  \
+    "does its exec region loop, or never set *stateindex = -1? (its thread got 97% of a CPU in the last 1.0 s, " \
+    "more than a period needs; a loaded machine gives it less)"
+#define LOOPS_HELD                                                                                             \
+    "does its exec region loop, or never set *stateindex = -1? (its thread got 30% of a CPU in the last 1.0 s, " \
+    "more than a period needs; a loaded machine gives it less)"
+#define WRITING                                                                                                \
+    "it is blocked writing its output: the pipe is full (it prints faster than the run's output is read): does " \
+    "its exec region print too much?"
 #define STARVED                                                                                                   \
     "it wanted the CPU but got only 3% of it in the last 1.0 s: do processes at real-time priority or an "      \
     "overloaded machine starve it, or does its exec region loop?"
@@ -554,6 +566,14 @@ void test_ord_stuck_report_says_what_the_module_was_doing(void) {
     stuck_with_activity('D', 0, 0, WAITS);
     stuck_with_activity('T', 0, 0, "it is stopped (by SIGSTOP, or a debugger holds it)");
     stuck_with_activity('Z', 0, 0, "it is no longer running (it crashed or was killed)");
+    /* a printf flood: asleep in a write to a full pipe (wchan), whatever CPU it got printing */
+    stuck_waiting_in('S', 970 * MS, -1, "anon_pipe_write", WRITING);
+    stuck_waiting_in('S', 300 * MS, 650 * MS, "pipe_write", WRITING);
+    stuck_waiting_in('D', 30 * MS, -1, "pipe_wait_writable", WRITING);
+    /* asleep elsewhere, or running, or an older kernel's pipe_wait (reads and writes alike): not said so */
+    stuck_waiting_in('S', 970 * MS, -1, "pipe_wait", LOOPS);
+    stuck_waiting_in('S', 30 * MS, -1, "hrtimer_nanosleep", WAITS);
+    stuck_waiting_in('R', 970 * MS, 20 * MS, "anon_pipe_write", LOOPS);
 }
 
 /* Short periods: a loaded machine may hold a module for a few periods; it is declared stuck only
