@@ -5,6 +5,7 @@
  * in the sandbox right after the run — the executable that crashed, so no build-id to check and no
  * addr2line run again — in `contract trace`'s words, the inlined place joined to its frame; a
  * replay of a logs folder tells its crash files unmapped (log-api.ts: the IDE runs no addr2line).
+ * The crash's row in the Problems panel is labelled `run` (no compiler said it) and says what the signal means.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { spawnSync } from 'node:child_process';
@@ -51,6 +52,11 @@ describe.skipIf(!canBuild)('Monitor: the replay of a job whose module crashed', 
     await page.evaluate(() => localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration: 3 })));
     await page.locator('#btn-run').click();
     await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 150_000, interval: 1000 }).toBe('failed');
+    // the crash's row in Problems is the run's, not gcc's, and says what SIGSEGV means
+    const crashRow = page.locator(`.problem-row[data-path$="${MAA_C}"]`, { hasText: 'crashed here' });
+    await expect.poll(() => crashRow.locator('.src').allTextContents(), { timeout: 20_000 }).toEqual(['run']);
+    expect(await crashRow.locator('.msg').textContent()).toMatch(/^MAA crashed here: signal 11 \(SIGSEGV\) at address 0x0, in \w+: a bad pointer: NULL, freed, or past the end of an array/);
+    await shot(page, 'problems-crash-row-run');
     if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
     const option = page.locator('.monitor-sources option[value^="job:"]');
     await expect.poll(() => option.count(), { timeout: 20_000 }).toBe(1);
