@@ -44,7 +44,7 @@ describe('a crash site in contract run', () => {
         const { runLines } = printed(false);
         const failures = moduleFailures(runLines);
         expect(failures).toEqual([{ module: 'EST', how: 'died by signal 11 (Segmentation fault)', site: SITE }]);
-        expect(failureText(failures[0]!)).toBe(`EST crashed (died by signal 11 (Segmentation fault))${SITE}`);
+        expect(failureText(failures[0]!)).toBe(`EST crashed (died by signal 11 (Segmentation fault))${SITE}: a bad pointer: NULL, freed, or past the end of an array`);
     });
 
     it('the crash report and the frames only with --verbose', () => {

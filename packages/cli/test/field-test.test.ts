@@ -498,7 +498,7 @@ describe('6. a crashed module', () => {
         const trace = capture(root);
         expect(await runCli(['trace', 'crash/logs'], trace)).toBe(0);
         // the runtime writes the records it had not written, then its crash record (docs/runtime-api.md "CSV log")
-        expect(trace.stdout).toMatch(/^\+\d+\.\d{6}s CTL  crashed: signal 11 \(SIGSEGV\)$/m);
+        expect(trace.stdout).toMatch(/^\+\d+\.\d{6}s CTL  crashed: signal 11 \(SIGSEGV\): a bad pointer: NULL, freed, or past the end of an array$/m);
         expect(trace.stdout).not.toContain('CTL  its last record: no exit record follows');
     }, 240_000);
 

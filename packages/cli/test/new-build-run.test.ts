@@ -386,7 +386,7 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(io.stderr).toContain('module CTL crashed (died by signal 11');
         // where: the line of the null store, in its region (the runtime's crash report, mapped by the service)
         const at = crashing.split('\n').findIndex((l) => l.includes('*p = 1;')) + 1;
-        expect(io.stderr).toMatch(new RegExp(`^module CTL crashed \\(died by signal 11 \\(Segmentation fault\\)\\) at src-gen/generated/architecture/modules/CTL_mod/module\\.c:${at} in its protected region protect_exec_CTL \\(\\w+\\)$`, 'm'));
+        expect(io.stderr).toMatch(new RegExp(`^module CTL crashed \\(died by signal 11 \\(Segmentation fault\\)\\) at src-gen/generated/architecture/modules/CTL_mod/module\\.c:${at} in its protected region protect_exec_CTL \\(\\w+\\): a bad pointer: NULL, freed, or past the end of an array$`, 'm'));
         expect(io.stderr).toContain(`crash/src-gen/generated/architecture/modules/CTL_mod/module.c:${at}: error: CTL crashed here: signal 11 (SIGSEGV) at address 0x0, in `);
         expect(io.stderr).not.toContain('==contract-crash==');
         // make's "*** [...: run] Error 1" in the log and its own exit 2 are both named, not left to contradict
