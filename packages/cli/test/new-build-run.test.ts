@@ -400,6 +400,26 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(readdirSync(join(dir, 'logs')).some((f) => f.startsWith('CTL_'))).toBe(true);
     }, 240_000);
 
+    it('a module that floods its output is said blocked writing it, not looping (ORD reads its wchan)', async () => {
+        const dir = join(root, 'flood');
+        expect(await runCli(['new', 'flood'], capture(root))).toBe(0);
+        expect(await runCli(['generate', 'flood'], capture(root))).toBe(0);
+        const file = join(dir, 'src-gen/generated/architecture/modules/CTL_mod/module.c');
+        const source = readFileSync(file, 'utf8');
+        // lines of 4000 characters written for ever: the pipe to contract-launch is full nearly all the time
+        const flooding = source.replace('*stateindex = -1; //the run is finished',
+            '{ static char text[4001]; memset(text, \'x\', 4000); for (;;) printf("%s\\n", text); }');
+        expect(flooding).not.toBe(source);
+        writeFileSync(file, flooding);
+        const io = capture(root);
+        const code = await runCli(['run', 'flood', '--sandbox', 'bwrap', '--duration', '3s'], io);
+        expect(io.stderr).toMatch(
+            /^problem: CTL has not finished release #\d+ after \d+ periods: it is blocked writing its output: the pipe is full \(it prints faster than the run's output is read\): does its exec region print too much\?$/m,
+        );
+        expect(io.stderr).not.toMatch(/CTL has not finished release #\d+ after \d+ periods: does its exec region loop/);
+        expect(code).toBe(4);
+    }, 240_000);
+
     it('exits 4 and names the module when an exec region never sets *stateindex = -1 (issue 18)', async () => {
         const dir = join(root, 'stuck');
         expect(await runCli(['new', 'stuck'], capture(root))).toBe(0);
