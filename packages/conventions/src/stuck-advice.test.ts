@@ -7,6 +7,7 @@ const CAUSES = [
     'does its exec region loop, or never set *stateindex = -1? (its thread got 8% of a CPU in the last 0.5 s, more than a period needs; a loaded machine gives it less)',
     'does its exec region loop, or never set *stateindex = -1? (it ran 97% of the last 1.0 s)',
     "it is blocked writing its output: the pipe is full (it prints faster than the run's output is read): does its exec region print too much?",
+    'it prints without end (12.0 MiB written in the last 0.5 s): does its exec region print too much, or loop printing?',
     'it is waiting, not running (a sleep, a read, a lock or a send to a full mailbox in its exec region?)',
     'it wanted the CPU but got only 3% of it in the last 5.0 s: do processes at real-time priority or an overloaded machine starve it, or does its exec region loop?',
     'it is stopped (by SIGSTOP, or a debugger holds it)',

@@ -251,6 +251,7 @@ static void report_stuck(OrdCore *c, SchemaState *ss, int m, long periods, const
     } else {
         OrdModuleActivity now;
         memset(&now, 0, sizeof now); /* a binding that does not read wchan leaves it "" */
+        now.written_bytes = -1;
         int seen = c->io.module_activity && c->io.module_activity(c->io.ctx, module, &now) == 0;
         int looked = ss->looked[m] == ss->outstanding[m] && ss->look[m].state != 0;
         ord_stuck_cause(looked ? &ss->look[m] : NULL, ss->looked_t[m], seen ? &now : NULL, c->now, ss->s->period_ns, cause,

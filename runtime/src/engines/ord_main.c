@@ -251,7 +251,8 @@ static int b_module_gone(void *ctx, const char *module) {
    <run dir>/<module>.pid (written by the module at start-up), then in /proc/<pid>/task/<pid>/:
    the state letter from `stat`, the CPU time and the time spent waiting for a CPU from
    `schedstat` (ns; without it, stat's utime + stime and an unknown wait), the kernel function it
-   sleeps in from `wchan` (a write to a full pipe: ord_activity_writing_to_full_pipe). Asked at most twice per
+   sleeps in from `wchan` (a write to a full pipe: ord_activity_writing_to_full_pipe), the bytes
+   it wrote from `io` (wchar). Asked at most twice per
    stuck release. -1 when the pid or stat cannot be read (the report then keeps the question). */
 static int b_module_activity(void *ctx, const char *module, OrdModuleActivity *out) {
     (void)ctx;
@@ -284,6 +285,20 @@ static int b_module_activity(void *ctx, const char *module, OrdModuleActivity *o
     out->cpu_ns = (int64_t)((utime + stime) * (1000000000ULL / (unsigned long long)hz));
     out->wait_ns = -1;
     out->waiting_in[0] = '\0';
+    out->written_bytes = -1;
+    /* the bytes it wrote ("wchar: N"; hidden from another user's process) */
+    snprintf(path, sizeof path, "/proc/%ld/task/%ld/io", pid, pid);
+    f = fopen(path, "r");
+    if (f) {
+        char io_line[128];
+        unsigned long long wchar = 0;
+        while (fgets(io_line, sizeof io_line, f))
+            if (sscanf(io_line, "wchar: %llu", &wchar) == 1) {
+                out->written_bytes = (int64_t)wchar;
+                break;
+            }
+        fclose(f);
+    }
     /* the kernel function it sleeps in ("0" when running, or hidden from this process) */
     snprintf(path, sizeof path, "/proc/%ld/task/%ld/wchan", pid, pid);
     f = fopen(path, "r");

@@ -47,6 +47,13 @@ const char *ord_stuck_cause(const OrdModuleActivity *then, int64_t then_t, const
         return buf;
     }
     int64_t wall = now_t - then_t;
+    if (then && wall > 0 && then->written_bytes >= 0 && now->written_bytes - then->written_bytes >= ORD_FLOOD_BYTES) {
+        snprintf(buf, n,
+                 "it prints without end (%.1f MiB written in the last %.1f s): does its exec region print too much, "
+                 "or loop printing?",
+                 (double)(now->written_bytes - then->written_bytes) / (1024.0 * 1024.0), (double)wall / 1e9);
+        return buf;
+    }
     int compared = then && wall > 0 && now->cpu_ns >= then->cpu_ns;
     if (!compared) {
         if (now->state == 'S' || now->state == 'D')

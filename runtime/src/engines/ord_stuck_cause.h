@@ -13,7 +13,8 @@
  *  - ready to run most of the time but given less CPU than that: starved by processes at
  *    real-time priority or a machine loaded past its CPUs;
  *  - asleep in a write to a full pipe at the last look (its wchan): blocked on its own output,
- *    printed faster than the run's output is read (a printf flood), not looping;
+ *    printed faster than the run's output is read (a printf flood), not looping; or, between the
+ *    looks, it wrote ORD_FLOOD_BYTES or more (its io's wchar): a flood whatever the pipe's state;
  * and says a module that has ended (a zombie: "no longer running", as OrdIo.module_gone) or is
  * stopped (SIGSTOP, a debugger).
  * Without both looks (no module_activity, the module's /proc entry unreadable, a release
@@ -35,7 +36,14 @@ typedef struct OrdModuleActivity {
     int64_t cpu_ns;
     int64_t wait_ns;
     char waiting_in[32];
+    /* the bytes its thread has written (/proc's `io`, wchar: its output, its CSV log, any file),
+       -1 when not known */
+    int64_t written_bytes;
 } OrdModuleActivity;
+
+/** Bytes written between the two looks from which a module is said to print without end (1 MiB:
+ *  a period's printf writes far less; a flood, whatever the pipe's state at the look). */
+#define ORD_FLOOD_BYTES (1024 * 1024)
 
 /** Whether a look shows the thread asleep in a write to a full pipe (its stdout or stderr, read
  *  by contract-launch: the module prints faster than the run's output is read). Only the kernel's

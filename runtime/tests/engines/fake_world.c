@@ -450,7 +450,14 @@ static int o_module_activity(void *ctx, const char *m, OrdModuleActivity *out) {
     out->cpu_ns = w->act_cpu[i];
     out->wait_ns = w->act_wait_step[i] < 0 ? -1 : w->act_wait[i];
     snprintf(out->waiting_in, sizeof out->waiting_in, "%s", w->act_waiting_in[i]);
+    w->act_written[i] += w->act_written_step[i] < 0 ? 0 : w->act_written_step[i];
+    out->written_bytes = w->act_written_step[i] < 0 ? -1 : w->act_written[i];
     return 0;
+}
+
+void fake_set_written(FakeWorld *w, const char *module, int64_t written_step) {
+    int i = activity_index(w, module);
+    if (i >= 0) w->act_written_step[i] = written_step;
 }
 
 void fake_set_waiting_in(FakeWorld *w, const char *module, const char *wchan) {
@@ -467,6 +474,8 @@ void fake_set_activity(FakeWorld *w, const char *module, char state, int64_t cpu
     }
     w->act_state[i] = state;
     w->act_waiting_in[i][0] = '\0';
+    w->act_written_step[i] = -1;
+    w->act_written[i] = 0;
     w->act_step[i] = cpu_step_ns;
     w->act_wait_step[i] = wait_step_ns;
 }

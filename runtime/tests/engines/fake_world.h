@@ -52,6 +52,7 @@ typedef struct FakeWorld {
     char act_module[FW_MAX][16];
     char act_state[FW_MAX];
     char act_waiting_in[FW_MAX][32]; /* the wchan each look answers (fake_set_waiting_in), "" by default */
+    int64_t act_written_step[FW_MAX], act_written[FW_MAX]; /* bytes written further at each look (-1: unknown, the default) */
     int64_t act_step[FW_MAX], act_cpu[FW_MAX], act_wait_step[FW_MAX], act_wait[FW_MAX];
     int act_looks[FW_MAX];
     /* SupIo.module_run_ended: the modules whose run ended by their own code (fake_end_own_run),
@@ -77,6 +78,8 @@ void fake_set_gone(FakeWorld *w, const char *module);
 void fake_set_activity(FakeWorld *w, const char *module, char state, int64_t cpu_step_ns, int64_t wait_step_ns);
 /** The kernel function `module`'s looks say it sleeps in (its wchan: `anon_pipe_write`), after fake_set_activity. */
 void fake_set_waiting_in(FakeWorld *w, const char *module, const char *wchan);
+/** `module`'s looks say it wrote `written_step` bytes more than at the last look (-1: unknown), after fake_set_activity. */
+void fake_set_written(FakeWorld *w, const char *module, int64_t written_step);
 /** How many times OrdIo.module_activity looked at `module`. */
 int fake_activity_looks(const FakeWorld *w, const char *module);
 /** The id of the latest ORD release of `module` (0: never released). */

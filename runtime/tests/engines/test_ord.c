@@ -511,12 +511,14 @@ void test_ord_stuck_report_of_a_module_no_longer_running(void) {
    or more CPU time than its 200 ms period, is asked whether its exec region loops; one that ran 3% while ready to run 90% of it is
    starved; one that ran 3% and waited for a CPU 2% slept: it waits, whatever its state at the
    last look. One look at each point, not one per tick. */
-static void stuck_waiting_in(char state, int64_t cpu_step_ns, int64_t wait_step_ns, const char *wchan, const char *cause) {
+static void stuck_writing(char state, int64_t cpu_step_ns, int64_t wait_step_ns, const char *wchan, int64_t written_step,
+                          const char *cause) {
     FakeWorld w;
     OrdCore *c = make(&w);
     if (!c) { CHECK(0); return; }
     fake_set_activity(&w, "G", state, cpu_step_ns, wait_step_ns);
     fake_set_waiting_in(&w, "G", wchan);
+    fake_set_written(&w, "G", written_step);
     ord_core_activate(c, 0, "SLW", NULL, 0, "SUP", 1);
     uint32_t g = fake_last_release(&w, "G");
     ord_core_advance(c, 1900 * MS);
@@ -533,6 +535,10 @@ static void stuck_waiting_in(char state, int64_t cpu_step_ns, int64_t wait_step_
     CHECK(strcmp(w.stuck_message, said) == 0);
     CHECK(fake_activity_looks(&w, "G") == 2);
     ord_core_destroy(c);
+}
+
+static void stuck_waiting_in(char state, int64_t cpu_step_ns, int64_t wait_step_ns, const char *wchan, const char *cause) {
+    stuck_writing(state, cpu_step_ns, wait_step_ns, wchan, -1, cause);
 }
 
 static void stuck_with_activity(char state, int64_t cpu_step_ns, int64_t wait_step_ns, const char *cause) {
@@ -574,6 +580,12 @@ void test_ord_stuck_report_says_what_the_module_was_doing(void) {
     stuck_waiting_in('S', 970 * MS, -1, "pipe_wait", LOOPS);
     stuck_waiting_in('S', 30 * MS, -1, "hrtimer_nanosleep", WAITS);
     stuck_waiting_in('R', 970 * MS, 20 * MS, "anon_pipe_write", LOOPS);
+    /* a flood whose pipe had room at the look: 12 MiB written between the looks (1 s) */
+    stuck_writing('R', 970 * MS, 20 * MS, "", 12 * 1024 * 1024,
+                  "it prints without end (12.0 MiB written in the last 1.0 s): does its exec region print too much, or "
+                  "loop printing?");
+    /* a period's printf (4 KiB) is no flood: still a loop */
+    stuck_writing('R', 970 * MS, 20 * MS, "", 4096, LOOPS);
 }
 
 /* Short periods: a loaded machine may hold a module for a few periods; it is declared stuck only
