@@ -77,8 +77,13 @@ void scenario_service_stop(const char *root, const char *bin, const char *launch
     pid_t pids[16];
     int n = run_pids(s.run, pids, 16);
     check(n == 6, "service stop: the launcher and its 5 modules found by their .pid files");
-    kill(lp, SIGTERM); /* what make passes on */
-    for (int i = 0; i < n; i++) kill(pids[i], SIGTERM); /* the service manager's: every process of the service */
+    /* the service manager's: every process of the service, the modules first, then the launcher
+     * (what make passes on). In the other order the launcher, woken by its own signal, could run
+     * the whole stop (8 ms here) before this loop's signals reached the modules: they would end on
+     * the launcher's KILL requests with no SIGTERM of their own to pass on */
+    for (int i = 0; i < n; i++)
+        if (pids[i] != lp) kill(pids[i], SIGTERM);
+    kill(lp, SIGTERM);
     int st = wait_launcher(lp, 15000);
     free(txt);
     free(ord);
