@@ -392,7 +392,7 @@ describe('contract build / run on a project (bwrap)', () => {
         // make's "*** [...: run] Error 1" in the log and its own exit 2 are both named, not left to contradict
         expect(io.stdout + io.stderr).toMatch(/^make: \*\*\* \[Makefile:\d+: run\] Error 1$/m);
         expect(io.stderr).toContain('(contract-launch exit 1; make exit 2)');
-        expect(io.stderr).toContain('contract-launch: FAILED: module CTL crashed');
+        expect(io.stderr).toContain('contract-launch: FAILED: module CTL died by signal 11 (Segmentation fault)');
         // ORD sees the release never finish: it says the module is gone, not that its code loops
         expect(io.stderr).toMatch(/^\[ORD\] STUCK: CTL has not finished release #\d+ after \d+ periods: it is no longer running \(it crashed or was killed\)$/m);
         expect(io.stdout + io.stderr).not.toContain('*stateindex = -1?');

@@ -39,6 +39,19 @@ export function goneModuleSign(k: KnownRecord): GoneSign | undefined {
 }
 
 /**
+ * Whether the launcher's words say the module ended on its own, not by the run's stop: a signal it
+ * did not send (`died by signal 9 (Killed)`), an exit with a status (`exited with status 3`), or
+ * with 0 before the run's end (its code's `exit(0)`). A module ending on the stop's KILL request
+ * (`exited with status 0`, `... while the run stopped`) or terminated by the launcher's own SIGTERM
+ * (`terminated by signal 15`) ended as the run did: no sign (its exit record says the same).
+ */
+export function endedOnItsOwn(how: string): boolean {
+  if (how.startsWith('died by signal')) return true;
+  const status = /^exited with status (\d{1,3})( before the run's end)?/.exec(how);
+  return !!status && (status[1] !== '0' || status[2] !== undefined);
+}
+
+/**
  * The module one of the launcher's own lines says ended (`line`: its text without the
  * `contract-launch: ` prefix: a `line` event of source `launcher`, on its stderr, of the run step),
  * or undefined. Hostile text: a module's own output comes tagged with its name (`[SRT] ...`: source
@@ -48,6 +61,6 @@ export function goneModuleSign(k: KnownRecord): GoneSign | undefined {
  */
 export function launcherGoneSign(line: string, pidOf: (module: string) => number | undefined): GoneSign | undefined {
   const end = launcherEndLine(line);
-  if (!end || !MODULE_NAME.test(end.module) || pidOf(end.module) !== end.pid) return undefined;
+  if (!end || !endedOnItsOwn(end.how) || !MODULE_NAME.test(end.module) || pidOf(end.module) !== end.pid) return undefined;
   return { module: end.module, words: `contract-launch: ${line}`.slice(0, MAX_WORDS) };
 }

@@ -80,6 +80,14 @@ describe("the launcher's line saying a module ended", () => {
     expect(launcherGoneSign('module SRT (pid 41) died by signal 9 (Killed)', () => undefined)).toBeUndefined();
     expect(launcherGoneSign('module SRT (pid 41) died by signal 9 (Killed)', () => 41)).toEqual({ module: 'SRT', words: 'contract-launch: module SRT (pid 41) died by signal 9 (Killed)' });
   });
+
+  it('takes no line of a module that ended with the run: on the stop\'s KILL request, or terminated by the launcher', () => {
+    const pid = () => 41;
+    for (const how of ['exited with status 0', 'exited with status 0 while the run stopped', 'terminated by signal 15 (Terminated)', 'terminated by signal 15 (Terminated) while the run stopped'])
+      expect(launcherGoneSign(`module SRT (pid 41) ${how}`, pid), how).toBeUndefined();
+    for (const how of ['exited with status 3', "exited with status 0 before the run's end", 'died by signal 11 (Segmentation fault) while the run stopped'])
+      expect(launcherGoneSign(`module SRT (pid 41) ${how}`, pid)?.module, how).toBe('SRT');
+  });
 });
 
 

@@ -79,7 +79,8 @@ describe.skipIf(!canBuild)('a module SIGKILLed mid-run, followed live', () => {
     const shownAfterMs = Date.now() - killedAt;
     // while the job still runs (the run lasts 12 s more or less: the kill came a second into it)
     expect(await status()).toBe('running');
-    expect(await page.locator('.monitor-modules').textContent()).toMatch(new RegExp(`· gone: ${MODULE}$`));
+    // (the modules' line is redrawn at most a few times a second, the alert at once)
+    await expect.poll(() => page.locator('.monitor-modules').textContent(), { timeout: 5000 }).toMatch(new RegExp(`· gone: ${MODULE}$`));
     const marks = await page.evaluate(() => ((window as any).__ide.monitor.current?.marks ?? []).filter((m: { kind: string }) => m.kind === 'crash').map((m: { where: string; label: string }) => `${m.where} ${m.label}`));
     expect(marks).toEqual([expect.stringMatching(new RegExp(`^${MODULE} ${MODULE} gone: contract-launch: module ${MODULE} \\(pid \\d+\\) died by signal 9 \\(Killed\\)$`))]);
     console.log(`launcher-gone: ${MODULE} shown gone ${shownAfterMs} ms after its SIGKILL, the job still running`);
