@@ -71,7 +71,7 @@ describe("the launcher's crashes, for a failed run's message", () => {
     const c = new LauncherCrashes();
     c.line('module EST (pid 21) died by signal 11 (Segmentation fault)');
     c.line('FAILED: module EST died by signal 11 (Segmentation fault)');
-    expect(c.summary()).toBe('module EST crashed (died by signal 11 (Segmentation fault))');
+    expect(c.summary()).toBe('module EST crashed (died by signal 11 (Segmentation fault)): a bad pointer: NULL, freed, or past the end of an array');
     const d = new LauncherCrashes();
     d.line('module CTL (pid 22) exited with status 3');
     d.line('FAILED: module CTL exited with status 3');
