@@ -401,9 +401,9 @@ describe('contract build / run on a project (bwrap)', () => {
     }, 240_000);
 
     it('a module that floods its output is said printing too much, not looping (ORD reads its wchan and io)', async () => {
-        const dir = join(root, 'flood');
-        expect(await runCli(['new', 'flood'], capture(root))).toBe(0);
-        expect(await runCli(['generate', 'flood'], capture(root))).toBe(0);
+        const dir = join(root, 'printing');
+        expect(await runCli(['new', 'printing'], capture(root))).toBe(0);
+        expect(await runCli(['generate', 'printing'], capture(root))).toBe(0);
         const file = join(dir, 'src-gen/generated/architecture/modules/CTL_mod/module.c');
         const source = readFileSync(file, 'utf8');
         // lines of 4000 characters written for ever: the pipe to contract-launch is full nearly all the time
@@ -412,7 +412,7 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(flooding).not.toBe(source);
         writeFileSync(file, flooding);
         const io = capture(root);
-        const code = await runCli(['run', 'flood', '--sandbox', 'bwrap', '--duration', '3s'], io);
+        const code = await runCli(['run', 'printing', '--sandbox', 'bwrap', '--duration', '3s'], io);
         expect(io.stderr).toMatch(
             // asleep in a write to the full pipe at ORD's look (wchan), or megabytes written between its looks (io's wchar)
             /^problem: CTL has not finished release #\d+ after \d+ periods: (?:it is blocked writing its output: the pipe is full \(it prints faster than the run's output is read\): does its exec region print too much\?|it prints without end \(\d+\.\d MiB written in the last [\d.]+ s\): does its exec region print too much, or loop printing\?)$/m,

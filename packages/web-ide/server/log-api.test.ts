@@ -119,7 +119,7 @@ describe('GET /api/log-folder', () => {
     const listing = (await (await get('/api/log-folder?path=crashed')).json()) as { logs: string[]; crashSites?: string[] };
     expect(listing.logs).toEqual(['crashed/EST_1.csv']);
     expect(listing.crashSites).toEqual([
-      'EST crashed: signal 11 (SIGSEGV) at address 0x0, executable build-id 0011aabb',
+      'EST crashed: signal 11 (SIGSEGV) at address 0x0 (a bad pointer: NULL, freed, or past the end of an array), executable build-id 0011aabb',
       '  #0 the executable+0x40d8',
       '  #1 libc.so.6+0x2724a',
       "  not mapped to the code: `contract trace crashed` maps them to files and lines when the module's executable of that build is beside the logs (crashed/../modules/EST_mod/EST)",
