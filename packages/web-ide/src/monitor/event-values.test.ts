@@ -1,13 +1,11 @@
 import { describe, it, expect } from 'vitest';
-import { parseRecordLine } from '@contract-studio/build-service/trace';
-import { MonitorModel } from './monitor-model.js';
-import { recordedRunSteps } from './recorded-run.js';
+import type { MonitorModel } from './monitor-model.js';
+import { readThreeWays } from './read-three-ways.test-support.js';
 import { flowValueText } from './panel-text.js';
 
 // a field tester's line follower with its rule waiting for "lsot": LFR takes CAM's "lost" and
 // "found", which change no rule, then a "stop" that does (its records as the runtime writes them)
 const W = '2026-12-07T14:40:02.413877Z';
-const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
 const received = (ns: number, value: string, rules: number) =>
   `${ns},${W},LFR,event_received,CAM,0,256,"from_port=0 latency_ns=49593 rules=${rules} value=${value.replace(/"/g, '""')}"`;
 const LFR = [
@@ -20,19 +18,10 @@ const LFR = [
 ];
 const t = (ns: number) => ns - 1000000000;
 const LOGS = [{ name: 'LFR_1.csv', lines: LFR }];
-const LINES = LFR.map((text, i) => ({ file: 'LFR_1.csv', line: i + 2, text }));
 
 /** The three ways the Monitor reads a run: live lines read in place, parsed records, a recorded run's logs. */
 function models(): MonitorModel[] {
-  const opts = { checkpointEvery: 2 };
-  const live = new MonitorModel(opts);
-  for (const l of LINES) live.pushLine(l.file, l.line, l.text);
-  const parsed = new MonitorModel(opts);
-  parsed.pushAll(LINES.map((l) => parseRecordLine(l.file, l.line, l.text)));
-  const steps = recordedRunSteps(LOGS.map((l) => ({ name: l.name, text: `${HEADER}\n${l.lines.join('\n')}\n` })), 1000, opts);
-  let step = steps.next();
-  while (!step.done) step = steps.next();
-  return [live, parsed, step.value.model];
+  return readThreeWays(LOGS, { checkpointEvery: 2 });
 }
 
 describe('a supervisor\'s event flow under Deliveries', () => {

@@ -1,7 +1,7 @@
 import { describe, it, expect } from 'vitest';
 import { parseRecordLine, parseTrace, renderStory } from '@contract-studio/build-service/trace';
 import { MonitorModel } from './monitor-model.js';
-import { recordedRunSteps } from './recorded-run.js';
+import { CSV_HEADER as HEADER, linesInTimeOrder, readThreeWays } from './read-three-ways.test-support.js';
 import { markTooltip } from './marks-strip.js';
 import { crashedModulesText, unheardEventsRow } from './panel-text.js';
 import { modulesText } from './monitor-panel.js';
@@ -9,7 +9,6 @@ import { modulesText } from './monitor-panel.js';
 // two faults a field tester planted, in the records their runs wrote (b-deadrule, e-crash): GCS posts
 // "land" on its port 1 that nothing subscribes, and EST's code dereferences NULL after 300 cycles
 const W = '2026-12-07T11:02:48.568320Z';
-const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
 const GCS = [
   `1000000000,${W},GCS,module_started,,,0,pid=61 priority=30`,
   `1100000000,${W},GCS,event_posted,FLT,0,256,to_port=1`,
@@ -27,20 +26,11 @@ const EST = [
 const t = (ns: number) => ns - 1000000000;
 const LOGS = [{ name: 'GCS_1.csv', lines: GCS }, { name: 'EST_1.csv', lines: EST }];
 /** The run's records in time order, with their log and line. */
-const LINES = LOGS.flatMap((l) => l.lines.map((text, i) => ({ file: l.name, line: i + 2, text })))
-  .sort((a, b) => Number(a.text.split(',')[0]) - Number(b.text.split(',')[0]));
+const LINES = linesInTimeOrder(LOGS);
 
 /** The three ways the Monitor reads a run: live lines read in place, parsed records, a recorded run's logs. */
 function models(): MonitorModel[] {
-  const opts = { checkpointEvery: 16 };
-  const live = new MonitorModel(opts);
-  for (const l of LINES) live.pushLine(l.file, l.line, l.text);
-  const parsed = new MonitorModel(opts);
-  parsed.pushAll(LINES.map((l) => parseRecordLine(l.file, l.line, l.text)));
-  const steps = recordedRunSteps(LOGS.map((l) => ({ name: l.name, text: `${HEADER}\n${l.lines.join('\n')}\n` })), 1000, opts);
-  let step = steps.next();
-  while (!step.done) step = steps.next();
-  return [live, parsed, step.value.model];
+  return readThreeWays(LOGS, { checkpointEvery: 16 });
 }
 
 /** `contract trace`'s line for the record of `module` that says `what`, after its time and module. */
