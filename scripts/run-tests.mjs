@@ -9,11 +9,11 @@
 // (`npm run typecheck`: one check per workspace; vitest does not type-check). The suites that only
 // compute (conventions, language, codegen, vscode, the type check) run in the background at the
 // lowest CPU priority (nice 19), side by side, their output kept and printed whole at the end; the
-// others run in two lanes meanwhile (SECOND_LANE: the CLI and the IDE beside the C runtime, the
-// build service, the simulator and the installed-CLI test file: FIRST_LANE_FILES), one suite at a
-// time in each, the first lane streamed, and keep the CPUs whenever they want them (the computing
+// others run in three lanes meanwhile (LANES below), one suite at a time in each, the first lane
+// streamed, the others printed at the end, and keep the CPUs whenever they want them (the computing
 // suites fill the time the sandboxes, browsers and timed runs leave the CPUs idle; what they wait
 // for, a language server's answer, is bounded generously: they may wait long for a CPU).
+// Every suite's closing line says how long it took.
 // `node scripts/run-tests.mjs NAME...` runs the suites whose names contain one of the NAMEs.
 import { spawn } from 'node:child_process';
 import { mkdtempSync, readFileSync, existsSync, rmSync } from 'node:fs';
@@ -70,26 +70,42 @@ function countCRunner(out) {
 /** Workspaces whose tests only compute (no sandbox, no browser, no timing): run beside each other. */
 const CPU_ONLY = new Set(['packages/conventions', 'packages/language', 'packages/codegen', 'packages/vscode']);
 /**
- * Workspaces whose suites run in a second lane, one after the other, at normal priority, beside
- * the first lane (the C runtime, the build service, the simulator): the CLI's sandboxed builds and
- * runs, then the IDE's browsers. With one lane the two CPUs sat idle about half of the time (the
- * suites wait for sandboxes, timers and browsers; 23.5 min of CPU in 21 min of wall time on two cores).
+ * The lanes of the suites with sandboxes, browsers or timing: each runs its suites one after the
+ * other, at normal priority, beside the other lanes. A suite is a workspace's vitest run, or some
+ * of its test files run as a suite of their own (`files`; the workspace's own suite then runs the
+ * rest). With one lane the two CPUs sat idle about half of the time (the suites wait for sandboxes,
+ * timers and browsers); with two (the first: the C runtime, the build service, the simulator, the
+ * installed CLI and the CLI's Docker runs; the second: the CLI, then the IDE) the second lane ended
+ * about three minutes after the first and the CPUs were still idle 40 % of the time (25.5 min of
+ * CPU in 21 min on two cores): the IDE's longest browser files now run in a third lane from the
+ * start (each browser file has its own server on its own port and its own copy of the workspace).
+ * Packing and installing the CLI is about a minute of CPU: at nice 19 in the background it once
+ * waited over five minutes for a CPU, hence its place in the first lane.
  */
-const SECOND_LANE = new Set(['packages/cli', 'packages/web-ide']);
-/**
- * Test files run as a suite of their own at the end of the first lane, at normal priority (the first
- * lane ended about two minutes before the second): packing and installing the CLI is about a minute
- * of CPU, and in the background at nice 19 it once waited over five minutes for a CPU while both
- * lanes kept the two busy (its 300 s bound on the pack ran out); the CLI's Docker runs (45 s) moved
- * too when the first lane still ended 100 s before the second.
- */
-const FIRST_LANE_FILES = { 'packages/cli': ['test/e2e/installed-cli.e2e.test.ts', 'test/e2e/docker.e2e.test.ts'] };
+const LANES = [
+  ['runtime', 'packages/build-service', 'packages/simulator', { ws: 'packages/cli', files: ['test/e2e/installed-cli.e2e.test.ts', 'test/e2e/docker.e2e.test.ts'] }],
+  ['packages/cli', 'packages/web-ide'],
+  [{
+    ws: 'packages/web-ide',
+    files: ['test/e2e/ide.e2e.test.ts', 'test/e2e/monitor.e2e.test.ts', 'test/e2e/keyboard.e2e.test.ts', 'test/e2e/two-tabs.e2e.test.ts',
+      'test/e2e/editor-field-test.e2e.test.ts', 'test/e2e/server-killed-during-run.e2e.test.ts', 'test/e2e/large-workspace-ready.e2e.test.ts'],
+  }],
+];
+/** The test files of a workspace that run as suites of their own (excluded from its own suite). */
+const ownFiles = (ws) => LANES.flat().filter((e) => typeof e === 'object' && e.ws === ws).flatMap((e) => e.files);
+/** The lane of a suite: its workspace's name, or its files. */
+const laneOf = (ws, files) => LANES.findIndex((lane) => lane.some((e) => isEntry(e, ws, files))) + 1;
+/** Where a suite comes in its lane. */
+const placeInLane = (s) => LANES[s.lane - 1].findIndex((e) => isEntry(e, s.ws, s.files));
+const isEntry = (e, ws, files) => (typeof e === 'string' ? e === ws && !files : e.ws === ws && e.files === files);
 
 /** A vitest run in a workspace (its files, or all but `exclude`), read through the JSON reporter. */
-function vitestSuite(name, ws, { beside, files = [], exclude = [], lane }) {
+function vitestSuite(name, ws, { beside, files, exclude = [] }) {
   return {
     name,
-    lane: lane ?? (!beside && SECOND_LANE.has(ws) ? 2 : 1),
+    ws,
+    files,
+    lane: beside ? 0 : laneOf(ws, files),
     // pure computation, no sandbox timing: run side by side in the background, niced
     // (vitest gives each one worker on a two-core machine)
     beside,
@@ -97,7 +113,7 @@ function vitestSuite(name, ws, { beside, files = [], exclude = [], lane }) {
       const pkg = JSON.parse(readFileSync(join(root, ws, 'package.json'), 'utf8'));
       if (!pkg.scripts?.test) return Promise.resolve(null);
       const json = join(scratch, name.replace(/\W/g, '_') + '.json');
-      return run('npx', ['vitest', 'run', ...files, ...exclude.flatMap((f) => ['--exclude', f]), '--reporter=default', '--reporter=json', `--outputFile=${json}`],
+      return run('npx', ['vitest', 'run', ...(files ?? []), ...exclude.flatMap((f) => ['--exclude', f]), '--reporter=default', '--reporter=json', `--outputFile=${json}`],
         { cwd: join(root, ws), niced: beside }, echo).then((r) => ({ ...r, json }));
     },
     count: (r) => {
@@ -114,14 +130,16 @@ function vitestSuite(name, ws, { beside, files = [], exclude = [], lane }) {
 const suites = [
   {
     name: 'runtime (C, plain + ASan/UBSan, engines)',
+    ws: 'runtime',
+    lane: laneOf('runtime'),
     exec: () => run('make', ['-s', '-C', 'runtime', 'test']),
     count: (r) => countCRunner(r.out),
   },
   ...rootPkg.workspaces.flatMap((ws) => {
-    const own = FIRST_LANE_FILES[ws] ?? [];
+    const own = LANES.flat().filter((e) => typeof e === 'object' && e.ws === ws);
     return [
-      vitestSuite(ws, ws, { beside: CPU_ONLY.has(ws), exclude: own }),
-      ...(own.length ? [vitestSuite(`${ws} (${own.map((f) => f.replace(/^.*\//, '')).join(', ')})`, ws, { beside: false, files: own, lane: 1 })] : []),
+      vitestSuite(ws, ws, { beside: CPU_ONLY.has(ws), exclude: ownFiles(ws) }),
+      ...own.map((e) => vitestSuite(`${ws} (${e.files.map((f) => f.replace(/^.*\//, '')).join(', ')})`, ws, { beside: false, files: e.files })),
     ];
   }),
   {
@@ -184,44 +202,51 @@ function record(s, r) {
   if (r.code !== 0 || c.failed > 0) problems.push(`${s.name}: exit ${r.code}, ${c.failed} failed`);
   for (const f of c.failures ?? []) failureDetails.push(`${s.name}: ${f}`);
   if (c.passed + c.failed === 0) problems.push(`${s.name}: ran no test`);
-  console.log(`=== ${s.name}: ${c.passed} passed, ${c.failed} failed, ${c.skipped} skipped ===`);
+  console.log(`=== ${s.name}: ${c.passed} passed, ${c.failed} failed, ${c.skipped} skipped (${r.seconds.toFixed(0)} s) ===`);
 }
 
 const chosen = suites.filter((s) => !only.length || only.some((o) => s.name.includes(o)));
+for (const s of chosen) if (!s.beside && s.lane < 1) throw new Error(`${s.name}: in no lane of LANES`);
 // the suites marked `beside` start together in the background (niced), their output printed whole
-// one after the other once the others are done; the others run in two lanes, each one suite at a
-// time: the first lane's output streamed, the second lane's kept and printed whole at the end
+// one after the other once the others are done; the others run in their lanes, each one suite at a
+// time: the first lane's output streamed, the other lanes' kept and printed whole at the end
 // (sandboxes, browsers and timed runs come first for the CPUs)
 const together = chosen.filter((s) => s.beside);
-const firstLane = chosen.filter((s) => !s.beside && s.lane !== 2);
-const secondLane = chosen.filter((s) => !s.beside && s.lane === 2);
+const lanes = LANES.map((_, i) => chosen.filter((s) => !s.beside && s.lane === i + 1).sort((a, b) => placeInLane(a) - placeInLane(b)));
+const [firstLane, ...otherLanes] = lanes;
 const t0 = Date.now();
+/** Runs a suite, noting how long it took (said in its closing line). */
+const timed = async (s, echo) => {
+  const start = Date.now();
+  const r = await s.exec(echo);
+  return r && { ...r, seconds: (Date.now() - start) / 1000 };
+};
 // one Docker engine for the whole run, started here when none answers and stopped at the end: the
-// docker test files of the two lanes then find it running and leave it alone (each file stops
-// only a daemon it started itself, which would pull it from under the other lane)
+// docker test files of the lanes then find it running and leave it alone (each file stops only a
+// daemon it started itself, which would pull it from under another lane)
 const dockerd = chosen.some((s) => !s.beside) ? await startDockerd() : undefined;
-const background = Promise.all(together.map((s) => s.exec(false)));
+const background = Promise.all(together.map((s) => timed(s, false)));
 if (together.length) {
   console.log(`\n=== in the background, niced: ${together.map((s) => s.name.replace(/ \(.*$/, '')).join(', ')} ===`);
 }
-if (secondLane.length) {
-  console.log(`\n=== in a second lane, printed at the end: ${secondLane.map((s) => s.name).join(', ')} ===`);
-}
-const secondLaneDone = (async () => {
+otherLanes.forEach((lane, i) => {
+  if (lane.length) console.log(`\n=== in lane ${i + 2}, printed at the end: ${lane.map((s) => s.name).join(', ')} ===`);
+});
+const otherLanesDone = otherLanes.map(async (lane) => {
   const results = [];
-  for (const s of secondLane) results.push(await s.exec(false));
+  for (const s of lane) results.push(await timed(s, false));
   return results;
-})();
+});
 for (const s of firstLane) {
   console.log(`\n=== ${s.name} ===`);
-  record(s, await s.exec(true));
+  record(s, await timed(s, true));
 }
 const printKept = (list, results, how) => list.forEach((s, i) => {
   console.log(`\n=== ${s.name} (${how}) ===`);
   if (results[i]) process.stdout.write(results[i].out);
   record(s, results[i]);
 });
-if (secondLane.length) printKept(secondLane, await secondLaneDone, 'ran in the second lane');
+for (const [i, lane] of otherLanes.entries()) printKept(lane, await otherLanesDone[i], `ran in lane ${i + 2}`);
 if (together.length) printKept(together, await background, 'ran in the background');
 if (dockerd) await run('bash', ['scripts/docker-up.sh', '--stop', dockerd], {}, false);
 const slowest = fileTimes.sort((a, b) => b.s - a.s).slice(0, 10);

@@ -178,9 +178,14 @@ describe('a 1366x768 laptop at 150 % (911x512 at scale 1.5, reduce motion)', () 
     for (const id of ['monitor-prev', 'monitor-follow', 'monitor-play', 'monitor-next']) expect(await page.locator(`#${id}`).isDisabled(), id).toBe(false);
     expect((await box(page, '.monitor-body')).height).toBeGreaterThanOrEqual(40); // 8 before
     // a rule focused far down the Monitor is scrolled into view, inside the pane and above the bottom panel
-    const last = page.locator('.monitor-rule').last();
-    await last.focus();
-    const r = await last.evaluate((e) => e.getBoundingClientRect().toJSON() as DOMRect);
+    // the replay may still be adding rows on a loaded machine: wait until their number holds for half a second,
+    // then focus and measure one and the same element (a locator's .last() would resolve again)
+    let rows = -1;
+    await expect.poll(async () => { const n = await page.locator('.monitor-rule').count(); const same = n === rows; rows = n; return same; }, { timeout: 15_000, intervals: [500] }).toBe(true);
+    const last = await page.locator('.monitor-rule').last().elementHandle();
+    await last!.focus();
+    const r = await last!.evaluate((e) => e.getBoundingClientRect().toJSON() as DOMRect);
+    expect(await last!.evaluate((e) => e === document.activeElement)).toBe(true);
     const body = await box(page, '.monitor-body');
     expect(r.top).toBeGreaterThanOrEqual(body.top - 1);
     expect(r.bottom).toBeLessThanOrEqual(body.bottom + 1);
