@@ -54,6 +54,10 @@ const childFillsTmpfs = `${HEAD}
 int main(void) {
   pid_t p = fork();
   if (p == 0) {
+    /* the child is the one the kernel kills (a process may raise its own score): were it the parent,
+       the container's init, the container would end and its tmpfs go with it before it is read */
+    FILE *adj = fopen("/proc/self/oom_score_adj", "w");
+    if (adj) { fputs("1000", adj); fclose(adj); }
     static char block[1 << 20];
     memset(block, 1, sizeof block);
     FILE *f = fopen("/tmp/fill", "w");
