@@ -74,22 +74,30 @@ const CPU_ONLY = new Set(['packages/conventions', 'packages/language', 'packages
  * other, at normal priority, beside the other lanes. A suite is a workspace's vitest run, or some
  * of its test files run as a suite of their own (`files`; the workspace's own suite then runs the
  * rest). With one lane the two CPUs sat idle about half of the time (the suites wait for sandboxes,
- * timers and browsers); with two (the first: the C runtime, the build service, the simulator, the
- * installed CLI and the CLI's Docker runs; the second: the CLI, then the IDE) the second lane ended
- * about three minutes after the first and the CPUs were still idle 40 % of the time (25.5 min of
- * CPU in 21 min on two cores): the IDE's longest browser files now run in a third lane from the
- * start (each browser file has its own server on its own port and its own copy of the workspace).
- * Packing and installing the CLI is about a minute of CPU: at nice 19 in the background it once
- * waited over five minutes for a CPU, hence its place in the first lane.
+ * timers and browsers); with two the second (the CLI, then the IDE) ended about three minutes
+ * after the first and the CPUs were still idle 40 % of the time (25.5 min of CPU in 21 min on two
+ * cores). Three lanes of about the same length in a full run (lane 1 1,114 s and lane 2 1,094 s
+ * when the third held only the IDE's seven longest browser files, 491 s): the C runtime and the
+ * build service; the CLI and the rest of the IDE; the IDE's fifteen longest browser files (each
+ * has its own server on its own port and its own copy of the workspace), the installed CLI and
+ * the CLI's Docker runs, the simulator. Packing and installing the CLI is about a minute of CPU: at
+ * nice 19 in the background it once waited over five minutes for a CPU, hence its place in a lane.
  */
 const LANES = [
-  ['runtime', 'packages/build-service', 'packages/simulator', { ws: 'packages/cli', files: ['test/e2e/installed-cli.e2e.test.ts', 'test/e2e/docker.e2e.test.ts'] }],
+  ['runtime', 'packages/build-service'],
   ['packages/cli', 'packages/web-ide'],
-  [{
-    ws: 'packages/web-ide',
-    files: ['test/e2e/ide.e2e.test.ts', 'test/e2e/monitor.e2e.test.ts', 'test/e2e/keyboard.e2e.test.ts', 'test/e2e/two-tabs.e2e.test.ts',
-      'test/e2e/editor-field-test.e2e.test.ts', 'test/e2e/server-killed-during-run.e2e.test.ts', 'test/e2e/large-workspace-ready.e2e.test.ts'],
-  }],
+  [
+    {
+      ws: 'packages/web-ide',
+      files: ['test/e2e/ide.e2e.test.ts', 'test/e2e/monitor.e2e.test.ts', 'test/e2e/keyboard.e2e.test.ts', 'test/e2e/two-tabs.e2e.test.ts',
+        'test/e2e/editor-field-test.e2e.test.ts', 'test/e2e/server-killed-during-run.e2e.test.ts', 'test/e2e/large-workspace-ready.e2e.test.ts',
+        'test/e2e/run-stdin.e2e.test.ts', 'test/e2e/small-screens.e2e.test.ts', 'test/e2e/offline-two-tabs.e2e.test.ts',
+        'test/e2e/architecture-laptop-widths.e2e.test.ts', 'test/e2e/monitor-launcher-gone.e2e.test.ts', 'test/e2e/generated-guard.e2e.test.ts',
+        'test/e2e/eclipse-layout.e2e.test.ts', 'test/e2e/monitor-field-test.e2e.test.ts'],
+    },
+    { ws: 'packages/cli', files: ['test/e2e/installed-cli.e2e.test.ts', 'test/e2e/docker.e2e.test.ts'] },
+    'packages/simulator',
+  ],
 ];
 /** The test files of a workspace that run as suites of their own (excluded from its own suite). */
 const ownFiles = (ws) => LANES.flat().filter((e) => typeof e === 'object' && e.ws === ws).flatMap((e) => e.files);
@@ -98,6 +106,12 @@ const laneOf = (ws, files) => LANES.findIndex((lane) => lane.some((e) => isEntry
 /** Where a suite comes in its lane. */
 const placeInLane = (s) => LANES[s.lane - 1].findIndex((e) => isEntry(e, s.ws, s.files));
 const isEntry = (e, ws, files) => (typeof e === 'string' ? e === ws && !files : e.ws === ws && e.files === files);
+
+/** A suite's files in its name: their names, or how many from which on. */
+const describeFiles = (files) => {
+  const names = files.map((f) => f.replace(/^.*\//, ''));
+  return names.length <= 3 ? names.join(', ') : `${names.length} files: ${names.slice(0, 2).join(', ')}, …`;
+};
 
 /** A vitest run in a workspace (its files, or all but `exclude`), read through the JSON reporter. */
 function vitestSuite(name, ws, { beside, files, exclude = [] }) {
@@ -139,7 +153,7 @@ const suites = [
     const own = LANES.flat().filter((e) => typeof e === 'object' && e.ws === ws);
     return [
       vitestSuite(ws, ws, { beside: CPU_ONLY.has(ws), exclude: ownFiles(ws) }),
-      ...own.map((e) => vitestSuite(`${ws} (${e.files.map((f) => f.replace(/^.*\//, '')).join(', ')})`, ws, { beside: false, files: e.files })),
+      ...own.map((e) => vitestSuite(`${ws} (${describeFiles(e.files)})`, ws, { beside: false, files: e.files })),
     ];
   }),
   {
