@@ -515,16 +515,20 @@ export class MonitorPanel {
         const overruns = (p?.recentOverruns ?? []).slice(-3);
         const lastOf = (shown: number, all: number, what: string) =>
           all > shown ? [h('span', { class: 'miss-more', title: 'The earlier ones are marked on the timeline ([ and ] step through the marks)' }, `the last ${shown} of ${all} ${what}:`)] : [];
-        hist.misses.replaceChildren(...lastOf(misses.length, p?.deadlineMisses ?? 0, 'deadline misses'), ...misses.map((x) => h('span', {
-          class: 'miss', 'data-cycle': x.cycle,
-          title: m.marksBetween(x.t, x.t).find((k) => k.kind === 'miss' && k.where === name)?.label ?? `deadline miss (ORD:0) cycle ${x.cycle}`,
-        }, `ORD:0 cycle ${x.cycle} at ${fmtT(x.t)}`)),
+        // each is a button: a click (or Enter) moves the cursor to it, as the strip's marks do
+        const chip = (cls: string, t: number, label: string, text: string, cycle?: number) => {
+          const b = h('button', { type: 'button', class: cls, ...(cycle !== undefined ? { 'data-cycle': cycle } : {}), title: `${label} (click: the cursor goes there)` }, text);
+          b.addEventListener('click', () => this.seek(t));
+          return b;
+        };
+        hist.misses.replaceChildren(...lastOf(misses.length, p?.deadlineMisses ?? 0, 'deadline misses'), ...misses.map((x) => chip('miss', x.t,
+          m.marksBetween(x.t, x.t).find((k) => k.kind === 'miss' && k.where === name)?.label ?? `deadline miss (ORD:0) cycle ${x.cycle}`,
+          `ORD:0 cycle ${x.cycle} at ${fmtT(x.t)}`, x.cycle)),
           ...lastOf(overruns.length, p?.overruns ?? 0, 'overruns'),
           // each overrun's tooltip: its mark's label, ORD's line as it says it (the module the cycle still waits for, when it names one)
-          ...overruns.map((x) => h('span', {
-            class: 'overrun',
-            title: m.marksBetween(x.t, x.t).find((k) => k.kind === 'overrun' && k.where === name)?.label ?? `overrun after cycle ${x.cycle}`,
-          }, `overrun after cycle ${x.cycle} at ${fmtT(x.t)}`)));
+          ...overruns.map((x) => chip('overrun', x.t,
+            m.marksBetween(x.t, x.t).find((k) => k.kind === 'overrun' && k.where === name)?.label ?? `overrun after cycle ${x.cycle}`,
+            `overrun after cycle ${x.cycle} at ${fmtT(x.t)}`)));
       }
       return hist.root;
     });

@@ -299,7 +299,7 @@ describe('Monitor field test', () => {
     expect(mark.label).toBe(label);
     // the periodic block lists it; its tooltip says what the cycle waited for
     const missEl = page.locator('.monitor-pschema[data-periodic="schemaCommande1"] .miss');
-    await expect.poll(() => missEl.getAttribute('title')).toBe(label);
+    await expect.poll(() => missEl.getAttribute('title')).toBe(`${label} (click: the cursor goes there)`);
     // the quiet stretch: what is drawn after the last throttled parts caught up
     await page.waitForTimeout(600);
     const end = await page.evaluate(() => (window as any).__ide.monitor.current.end as number);
