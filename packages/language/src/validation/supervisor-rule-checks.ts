@@ -8,16 +8,15 @@
 import { AstUtils, type ValidationAcceptor, type ValidationChecks } from 'langium';
 import {
     isDurationEvent, isElapsedEvent, isEndofEvent, isExtraction, isFunctionParameter, isLocalVariable, isModuleEvent, isModuleInstance,
-    isNotify, isRule, isStartedEvent, isStructValue, isSubscribe, isSupervisionFunction, isVariableRef,
+    isNotify, isRule, isStartedEvent, isStructValue, isSupervisionFunction, isVariableRef,
     isIntLiteral, isRealLiteral, isStringLiteral, isBoolLiteral, isRelationalTest, isClause,
     type CactalAstType, type Clause, type ElapsedEvent, type EqualityTest, type Event, type Extraction, type ModuleEvent, type RelationalTest,
     type Port, type Rule, type TestOperand, type VariableRef
 } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
-import { rulesOf } from '../model/blocks.js';
 import { isNumeric, isOrdered, sameType, typeName, typeOfVariableRef, variableRefText, type CactalType } from '../model/types.js';
 import { SupervisorCodes } from './codes/supervisors.js';
-import { deliveredPorts, eventInPort, inputPortRead } from '../model/event-in-port.js';
+import { deliveredPorts, eventInPort, inputPortRead, subscribesOf } from '../model/event-in-port.js';
 import { activationsBounded } from '../model/rule-activity.js';
 import { ordSchemaTestName } from '../model/ord-schema-tests.js';
 import { ProjectNames } from './project-index.js';
@@ -90,9 +89,7 @@ function checkEventSubscribed(event: ModuleEvent, accept: ValidationAcceptor): v
     const source = event.source?.ref;
     const port = event.port?.ref;
     const fn = AstUtils.getContainerOfType(event, isSupervisionFunction);
-    if (!source || !port || !fn) return;
-    const subscribed = rulesOf(fn).some((r) => r.actions.some((a) => isSubscribe(a) && a.source?.ref === source && a.sourcePort?.ref === port));
-    if (subscribed) return;
+    if (!source || !port || !fn || subscribesOf(event).length > 0) return;
     report(accept, SupervisorCodes['supervisor-event-not-subscribed'],
         `Function ${fn.name} never subscribes to ${source.name}:${port.index}, so this event never occurs and its clause stays false: add 'subscribe ${source.name}:${port.index} =* :<input port>' to a rule that is active before.`,
         { node: event, property: 'port' });
