@@ -35,10 +35,37 @@ describe('contract new', () => {
         expect(io.stdout).toContain('created robot/supervisor.contract');
         // what it writes that is no source is ignored by git; src-gen/ (manifest, orphans/) is not
         const ignored = readFileSync(join(root, 'robot', '.gitignore'), 'utf8').split('\n').filter((l) => l && !l.startsWith('#'));
-        expect(ignored).toEqual(['logs/', 'src-gen/.contract-lock', 'src-gen/.contract-rename.json', '*.o']);
+        expect(ignored).toEqual(['logs/', 'src-gen/.contract-lock', 'src-gen/.contract-rename.json', 'src-gen/.contract-regions.json', '*.o']);
         const check = capture(root);
         expect(await runCli(['check', 'robot'], check)).toBe(0);
         expect(check.stderr).toMatch(/^0 errors, 0 warnings/);
+    }, 60_000);
+
+    it('kept in git: the generated files and the manifest are committed, the copy of the regions\' code is not, so CI\'s generate + git diff stays clean after a region edit committed without a generate', async () => {
+        const git = (dir: string, ...args: string[]) => spawnSync('git', ['-c', 'user.name=lab', '-c', 'user.email=lab@example.org', '-c', 'commit.gpgsign=false', '-c', 'core.hooksPath=/dev/null', ...args], { cwd: dir, encoding: 'utf8' });
+        expect(await runCli(['new', 'team'], capture(root))).toBe(0);
+        const dir = join(root, 'team');
+        const ctl = join(dir, 'src-gen/generated/architecture/modules/CTL_mod/module.c');
+        expect(await runCli(['generate', 'team'], capture(root))).toBe(0);
+        writeFileSync(ctl, readFileSync(ctl, 'utf8').replace('//TODO : implement the activity of one period, one state per call', 'static int steps = 0; steps++; (void)steps;'));
+        expect(await runCli(['generate', 'team'], capture(root))).toBe(0);
+        expect(readFileSync(join(dir, 'src-gen/.contract-regions.json'), 'utf8')).toContain('steps++');
+        expect(git(dir, 'init', '-q').status).toBe(0);
+        expect(git(dir, 'add', '-A').status).toBe(0);
+        expect(git(dir, 'commit', '-q', '-m', 'first').status).toBe(0);
+        const tracked = git(dir, 'ls-files').stdout.split('\n');
+        expect(tracked).toEqual(expect.arrayContaining(['.gitignore', 'src-gen/.contract-manifest.json', 'src-gen/generated/architecture/modules/CTL_mod/module.c']));
+        expect(tracked).not.toContain('src-gen/.contract-regions.json');
+        // a teammate changes the code in the region and commits it, generating nothing
+        writeFileSync(ctl, readFileSync(ctl, 'utf8').replace('steps++;', 'steps += 2;'));
+        expect(git(dir, 'commit', '-q', '-a', '-m', 'two steps').status).toBe(0);
+        // CI's step (docs/ci.md): generate, then fail if src-gen/ is not committed up to date
+        expect(await runCli(['generate', 'team'], capture(root))).toBe(0);
+        expect(readFileSync(join(dir, 'src-gen/.contract-regions.json'), 'utf8')).toContain('steps += 2;');
+        const diff = git(dir, 'diff', '--exit-code', '--stat', '--', 'src-gen');
+        expect(diff.stdout).toBe('');
+        expect(diff.status).toBe(0);
+        expect(git(dir, 'status', '--porcelain').stdout).toBe('');
     }, 60_000);
 
     it('refuses a non-empty folder and leaves its files alone', async () => {
