@@ -295,6 +295,42 @@ describe('prepareWorkspace on a project folder: what of it is read', () => {
     expect(readFileSync(join(ws.workDir, product), 'utf8')).toBe('object');
   }, 120_000);
 
+  it('inline files (no project folder): the copy sent among them restores a generated file left out (said), without it the file comes with its defaults and the code is said lost', async () => {
+    // the client's files as its last generation left them: a folder prepared once records them
+    const dir = project();
+    await prepare(dir);
+    const COPY = 'src-gen/.contract-regions.json';
+    expect(readFileSync(join(dir, COPY), 'utf8')).toContain("the user's marker");
+    const inline: Record<string, string> = {};
+    const walk = (rel: string): void => {
+      for (const entry of readdirSync(join(dir, rel), { withFileTypes: true })) {
+        const path = rel ? `${rel}/${entry.name}` : entry.name;
+        if (entry.isDirectory()) {
+          if (!/^(logs|run)$/.test(entry.name)) walk(path);
+        } else if (path.endsWith('.contract') || path.startsWith('src-gen/')) {
+          const data = readFileSync(join(dir, path));
+          if (!data.includes(0)) inline[path] = data.toString('utf8'); // a program a make by hand left is no source
+        }
+      }
+    };
+    walk('');
+    delete inline[MSC_C];
+    const prepareInline = async (files: Record<string, string>) => {
+      const ws = workspace();
+      const log: string[] = [];
+      const out = await prepareWorkspace(ws, { files }, 'cactal', { ...DEFAULT_LIMITS }, (l: string) => log.push(l));
+      expect(out.ok, log.join('\n')).toBe(true);
+      return { ws, log, out };
+    };
+    const restored = await prepareInline(inline);
+    expect(readFileSync(join(restored.ws.workDir, MSC_C), 'utf8')).toContain("the user's marker");
+    expect(restored.log).toContainEqual(expect.stringMatching(/^src-gen\/generated\/architecture\/modules\/MSC_mod\/module\.c: warning: was not there \(deleted\?\): restored \d+ protected region\(s\) of .*protect_init_MSC.* from the last generation's copy/));
+    const { [COPY]: _copy, ...withoutCopy } = inline;
+    const lost = await prepareInline(withoutCopy);
+    expect(readFileSync(join(lost.ws.workDir, MSC_C), 'utf8')).not.toContain("the user's marker");
+    expect(lost.log).toContainEqual(expect.stringMatching(/^src-gen\/generated\/architecture\/modules\/MSC_mod\/module\.c: warning: was not there \(deleted\?\), though its protected region\(s\) .*protect_init_MSC.* held code when it was last generated/));
+  }, 120_000);
+
   it('refuses a folder without a .contract file, and one whose project is in a sub-folder with its own src-gen/ (built from there, the user\'s code would be left out)', async () => {
     const refusal = (source: Parameters<typeof prepareWorkspace>[1]) => prepareWorkspace(workspace(), source, 'cactal', { ...DEFAULT_LIMITS }, () => {}).then(() => null, (e: Error) => e.message);
     const empty = mkdtempSync(join(base, 'empty-'));
