@@ -114,15 +114,66 @@ typedef struct { const char *name; size_t name_len; const char *file; int fd; } 
 static StdinFile stdin_files[MAX_MODULES];
 static int n_stdin_files;
 
+/* The launcher's own lines file in the logs folder (--log-dir): each line it says, also written
+ * there as `<mono_ns> <line>` (CLOCK_MONOTONIC, the clock of the CSV records' mono_ns), through an
+ * fd of its own that no module inherits (O_CLOEXEC). A run's recordings (contract trace LOGDIR, the
+ * IDE's replay of a logs folder) read a module's end from it: the module's own output reaches the
+ * launcher's stderr tagged `[NAME]`, never this file. The name is LAUNCHER_LINES_FILE of
+ * packages/build-service/src/trace/launcher-lines-file.ts. */
+#define LAUNCHER_LINES_FILE "contract-launch.log"
+/* Bytes written to it at most (a run of 256 modules says far less): past them it is no longer written. */
+#define LAUNCHER_LINES_MAX_BYTES (1024 * 1024)
+static int lines_fd = -1;
+static size_t lines_written;
+
+static void write_own_line(const char *fmt, va_list ap) __attribute__((format(printf, 1, 0)));
+static void write_own_line(const char *fmt, va_list ap)
+{
+    char text[1024];
+    char line[1100];
+    if (lines_fd < 0) return;
+    vsnprintf(text, sizeof text, fmt, ap);
+    for (char *p = text; *p; p++)
+        if (*p == '\n' || *p == '\r') *p = ' '; /* one line a line, whatever a path or an error holds */
+    int n = snprintf(line, sizeof line, "%lld %s\n", (long long)GetTime(), text);
+    if (n <= 0) return;
+    size_t len = (size_t)n < sizeof line ? (size_t)n : sizeof line - 1;
+    if (len > sizeof line - 1 || lines_written + len > LAUNCHER_LINES_MAX_BYTES) return;
+    line[len - 1] = '\n';
+    ssize_t k;
+    do k = write(lines_fd, line, len); while (k < 0 && errno == EINTR);
+    if (k > 0) lines_written += (size_t)k;
+}
+
 static void say(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 static void say(const char *fmt, ...)
 {
-    va_list ap;
+    va_list ap, again;
     va_start(ap, fmt);
+    va_copy(again, ap);
     fprintf(stderr, "contract-launch: ");
     vfprintf(stderr, fmt, ap);
     fputc('\n', stderr);
+    write_own_line(fmt, again);
+    va_end(again);
     va_end(ap);
+}
+
+/* Opens the lines file in `log_dir`, emptied (the run before's was moved to previous/ by make run
+ * and contract run); never through a link. Not opened: the lines are on stderr only, said once. */
+static void open_own_lines(const char *log_dir)
+{
+    char path[PATH_MAX];
+    int n = snprintf(path, sizeof path, "%s/%s", log_dir, LAUNCHER_LINES_FILE);
+    if (n <= 0 || (size_t)n >= sizeof path) return;
+    lines_fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_APPEND | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK, 0644);
+    if (lines_fd < 0) { say("cannot write %s (%s): the modules' ends are in this output only, not in the logs folder", path, strerror(errno)); return; }
+    struct stat st;
+    if (fstat(lines_fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        close(lines_fd);
+        lines_fd = -1;
+        say("%s is not a regular file: the modules' ends are in this output only, not in the logs folder", path);
+    }
 }
 
 static void usage(void)
@@ -1041,6 +1092,7 @@ int main(int argc, char *argv[])
     if (log_dir && *log_dir) {
         if (mkdir_p(log_dir) != 0) { say("log directory %s: %s", log_dir, strerror(errno)); unlink(lp_path); return 2; }
         setenv("CONTRACT_LOG_DIR", log_dir, 1);
+        open_own_lines(log_dir);
     }
     setvbuf(stdout, NULL, _IOLBF, 0);
     say("run directory %s", run_dir);

@@ -1,7 +1,7 @@
 /**
  * `make run` of the generated architecture Makefile keeps one run per LOG_DIR, as `contract run`
  * does (docs/codegen.md "The architecture Makefile"): the CSV logs of the run before are moved to
- * LOG_DIR/previous/run-<time of the newest>/ first, never deleted. The recipe runs for real (GNU
+ * LOG_DIR/previous/run-<time of the newest>/ first (the launcher's contract-launch.log with them), never deleted. The recipe runs for real (GNU
  * make and a shell) on examples/tutorial's committed Makefile, with the launcher replaced by
  * `true` and `all` taken as made (`-o all`): only the move is exercised. With the launcher replaced
  * by `echo`, the second test reads the command line: the supervisors are given to `--stop-first`.
@@ -56,11 +56,12 @@ describe('make run: one run per LOG_DIR', () => {
         log(logs, 'MAA_28-Nov-2026-09h30m05s.csv', older);
         log(logs, 'SUP_28-Nov-2026-09h30m05s.csv', newest);
         writeFileSync(join(logs, 'notes.txt'), 'mine');
+        writeFileSync(join(logs, 'contract-launch.log'), '1000 module MAA (pid 41) died by signal 9 (Killed)\n'); // the launcher's lines go with the run's logs
         const second = makeRun(arch, logs);
         expect(second.status, second.out).toBe(0);
         const to = join(logs, 'previous', stamp(newest));
         expect(second.out).toBe(`make run: the previous run's logs moved to ${to}\n`);
-        expect(readdirSync(to).sort()).toEqual(['MAA_28-Nov-2026-09h30m05s.csv', 'SUP_28-Nov-2026-09h30m05s.csv']);
+        expect(readdirSync(to).sort()).toEqual(['MAA_28-Nov-2026-09h30m05s.csv', 'SUP_28-Nov-2026-09h30m05s.csv', 'contract-launch.log']);
         expect(readdirSync(logs).sort()).toEqual(['notes.txt', 'previous']); // what is not a log stays
 
         // a run whose newest log has the same time: a folder of its own, never mixed
@@ -69,7 +70,7 @@ describe('make run: one run per LOG_DIR', () => {
         expect(third.status, third.out).toBe(0);
         expect(readdirSync(join(logs, 'previous')).sort()).toEqual([stamp(newest), `${stamp(newest)}-2`]);
         expect(readdirSync(join(logs, 'previous', `${stamp(newest)}-2`))).toEqual(['MAA_28-Nov-2026-09h30m07s.csv']);
-        expect(readdirSync(to)).toHaveLength(2);
+        expect(readdirSync(to)).toHaveLength(3);
     });
 });
 

@@ -165,4 +165,13 @@ export interface LogFolderListing {
    * addr2line command that maps them (`contract trace` maps them itself); a file not read, why.
    */
   crashSites?: string[];
+  /**
+   * The launcher's end lines of the folder's `contract-launch.log` (written by contract-launch alone:
+   * docs/runtime-api.md "contract-launch"), each with its time (mono_ns, as the records'), in time
+   * order: `{ monoNs: '123456789', line: 'module MAB (pid 41) died by signal 9 (Killed)' }`. The page
+   * takes one only when its pid is the module's own (its module_started record's). Absent: none.
+   */
+  launcherLines?: { monoNs: string; line: string }[];
+  /** Why the folder's contract-launch.log was not read, or was read in part. */
+  launcherLinesProblem?: string;
 }

@@ -21,7 +21,7 @@ import { HttpError } from './http-error.js';
 import { WorkspaceFs, type DirAt } from './workspace-fs.js';
 import type { WorkspacePaths } from './workspace-paths.js';
 import type { LogFolderListing } from './api-types.js';
-import { isLogFileName } from '@contract-studio/build-service/trace';
+import { isLogFileName, launcherLinesOfFile, LAUNCHER_LINES_FILE, MAX_LAUNCHER_LINES_BYTES } from '@contract-studio/build-service/trace';
 import { crashFileModule, crashReportOfFile, crashSiteLines, MAX_CRASH_FILE_BYTES, MAX_CRASH_FILES } from '@contract-studio/build-service/crash-files';
 
 /** Most bytes of a CSV log read for a replay (the build service's default ARTIFACT_BOUNDS.fileBytes: the page holds what it replays; src/views/run-logs.ts LOG_READ_BYTES). */
@@ -90,6 +90,30 @@ async function folderCrashSites(dir: DirAt, rel: string): Promise<string[]> {
   return lines;
 }
 
+/**
+ * The end lines of the folder's launcher lines file (contract-launch.log: a regular file, no link
+ * followed, its first MAX_LAUNCHER_LINES_BYTES read), or why it was not read; none when it is not there.
+ */
+async function folderLauncherLines(dir: DirAt, rel: string): Promise<{ lines: { monoNs: string; line: string }[]; problem?: string }> {
+  const shown = rel ? `${rel}/${LAUNCHER_LINES_FILE}` : LAUNCHER_LINES_FILE;
+  if (!(await WorkspaceFs.entry(dir, LAUNCHER_LINES_FILE).catch(() => undefined))) return { lines: [] };
+  let opened: Awaited<ReturnType<typeof WorkspaceFs.openFile>>;
+  try {
+    opened = await WorkspaceFs.openFile(dir, LAUNCHER_LINES_FILE, shown);
+  } catch (e) {
+    return { lines: [], problem: `${shown}: not read (${(e as Error).message})` };
+  }
+  try {
+    if (!opened.stats.isFile()) return { lines: [], problem: `${shown}: not a regular file, not read` };
+    const buf = Buffer.alloc(Math.min(MAX_LAUNCHER_LINES_BYTES, opened.stats.size));
+    const { bytesRead } = await opened.handle.read(buf, 0, buf.length, 0);
+    const lines = launcherLinesOfFile(buf.subarray(0, bytesRead).toString('utf8')).map((l) => ({ monoNs: String(l.monoNs), line: l.line }));
+    return opened.stats.size > MAX_LAUNCHER_LINES_BYTES ? { lines, problem: `${shown}: only its first ${MAX_LAUNCHER_LINES_BYTES} bytes read` } : { lines };
+  } finally {
+    await opened.handle.close().catch(() => undefined);
+  }
+}
+
 /** Logs of one folder a replay reads at most (the Monitor's bound: its run list, its model). */
 export const FOLDER_LOGS_MAX = 256;
 /** Entries of a folder's listing named as not read, at most (the others counted). */
@@ -121,8 +145,11 @@ export async function handleLogFolderApi(paths: WorkspacePaths, req: IncomingMes
     // their sizes (lstat: no link followed): the replay reads the small logs first under its bound
     const sizes = await Promise.all(listed.map(async (d) => (await WorkspaceFs.entry(dir, d.name).catch(() => undefined))?.size ?? 0));
     const crashSites = await folderCrashSites(dir, rel);
+    const launcher = await folderLauncherLines(dir, rel);
     return {
       ...(crashSites.length ? { crashSites } : {}),
+      ...(launcher.lines.length ? { launcherLines: launcher.lines } : {}),
+      ...(launcher.problem ? { launcherLinesProblem: launcher.problem } : {}),
       logs: listed.map((d) => (rel ? `${rel}/${d.name}` : d.name)),
       sizes,
       more: Math.max(0, regular.length - FOLDER_LOGS_MAX),

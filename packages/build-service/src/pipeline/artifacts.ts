@@ -25,6 +25,7 @@ import { formatBytes, RUN_LOG_MAX_BYTES, RUNTIME_LOG_MAX_BYTES, SERVICE_BOUNDS }
 import { readFileHeadNoFollow } from '../util/safe-fs.js';
 import type { TarEntryKind } from '../util/tar-reader.js';
 import { moduleOfLog } from '../trace/parse.js';
+import { LAUNCHER_LINES_FILE } from '../trace/launcher-lines-file.js';
 
 const gzip = promisify(gzipCb);
 
@@ -174,11 +175,13 @@ export const CANCELLED_REASON = 'not read: the job was cancelled during the coll
 
 /**
  * Which entries of logs/ are taken first when there are more than the bounds allow (one rule for
- * every sandbox): 0 the runtime's log of a module the launcher started (`<MODULE>_<date>.csv`), 1
+ * every sandbox): 0 the runtime's log of a module the launcher started (`<MODULE>_<date>.csv`) and the
+ * launcher's own lines (`contract-launch.log`), 1
  * another name the runtime gives its logs, 2 anything else; by name within each rank. A program
  * that fills logs/ with files of its own does not push the modules' logs out.
  */
 export function collectionRank(name: string, launchedModules?: ReadonlySet<string>): number {
+  if (name === LAUNCHER_LINES_FILE) return 0; // the launcher's own lines (how each module ended): small, written by it alone
   const module = moduleOfLog(name);
   if (module === undefined) return 2;
   return launchedModules?.has(module) ? 0 : 1;

@@ -12,7 +12,8 @@ export { schedulerLineFields } from './text-lines.js';
 export { skippedReleasesOf, overrunningAfter, missedTicksOf } from './ord-counts.js';
 export { durationText } from './duration-text.js';
 export { confirmingHold, flowHoldName, type ConfirmingHold } from './action-holds.js';
-export { launcherEndLine, type LauncherEnd } from './launcher-end-line.js';
+export { launcherEndLine, endedOnItsOwn, type LauncherEnd } from './launcher-end-line.js';
+export { LAUNCHER_LINES_FILE, MAX_LAUNCHER_LINES_BYTES, MAX_LAUNCHER_LINES, launcherLinesOfFile, LauncherLinesQueue, type LauncherFileLine } from './launcher-lines-file.js';
 export { renderStory, StoryTeller, CUT_RECORD, crashText, unheardEventText, type SchemaFigures, type NamedSchemaFigures, dataDropReason, userRecordText, keptRequestsText, askedToStopText, holdText, ownRunEndText, readableCause, missWaitText, missCriticalDelayNs, priorityText, LATE_RELEASE_SHARE, stuckSaysGone, ignoredUndo, LATE_RELEASE_NS, STORY_FOLLOWED } from './story.js';
 export { DataFlowUse, SILENT_FLOW_MIN_NS, SPARSE_FLOW_RATIO } from './data-flow-use.js';
 export { SupervisorFlowUse } from './supervisor-flow-use.js';
@@ -27,3 +28,4 @@ export { encodeTraceRecords, decodeTraceRecords, forEachTraceRecord, forEachTrac
 export { LogClock, LogClocks, monoBeyondInt64, monoTextProblem, wallTimeMs, posingAs, posingText, ORD_MODULE, BACK_TOLERANCE_NS, JUMP_CHECKED_NS, WALL_TOLERANCE_NS } from './log-clock.js';
 export { UndosToOrd, type UnservedUndos } from './undos-to-ord.js';
 export { receiverGone, type ReceiverGoneWay } from './receiver-gone.js';
+export type { LauncherToldEnd } from './ended-mid-run.js';

@@ -26,3 +26,16 @@ export function launcherEndLine(text: string): LauncherEnd | undefined {
   const m = END_LINE.exec(text);
   return m ? { module: m[1]!, pid: Number(m[2]), how: m[3]! } : undefined;
 }
+
+/**
+ * Whether the launcher's words say the module ended on its own, not by the run's stop: a signal it
+ * did not send (`died by signal 9 (Killed)`), an exit with a status (`exited with status 3`), or
+ * with 0 before the run's end (its code's `exit(0)`). A module ending on the stop's KILL request
+ * (`exited with status 0`, `... while the run stopped`) or terminated by the launcher's own SIGTERM
+ * (`terminated by signal 15`) ended as the run did: no sign (its exit record says the same).
+ */
+export function endedOnItsOwn(how: string): boolean {
+  if (how.startsWith('died by signal')) return true;
+  const status = /^exited with status (\d{1,3})( before the run's end)?/.exec(how);
+  return !!status && (status[1] !== '0' || status[2] !== undefined);
+}

@@ -17,7 +17,8 @@ import { DataFlowUse } from './data-flow-use.js';
 import { EventWaits } from './event-waits.js';
 import { UnmatchedEvents } from './unmatched-events.js';
 import { ProducerChanges } from './producer-changes.js';
-import { EndedMidRun, RUN_STOPPING } from './ended-mid-run.js';
+import { EndedMidRun, RUN_STOPPING, type LauncherToldEnd } from './ended-mid-run.js';
+import type { LauncherFileLine } from './launcher-lines-file.js';
 import { stuckSaysGone } from './receiver-gone.js';
 
 export { stuckSaysGone };
@@ -405,6 +406,19 @@ export class StoryTeller {
         if (r.kind === 'unknown' || !(r as TraceRecordBase).cut) return told;
         const k = r as TraceRecordBase & { kind: string };
         return told ? `${told}${CUT_RECORD}` : `${offset(BigInt(k.monoNs) - (this.t0 ?? 0n))} ${k.module.padEnd(4)} ${k.kind} record${CUT_RECORD}`;
+    }
+
+    /**
+     * One of the launcher's own end lines of the logs folder (contract-launch.log), handed in before
+     * the first record after its time (LauncherLinesQueue): the module it says ended on its own, told
+     * at its last record with the line as the evidence (EndedMidRun.launcherLine); undefined when the
+     * line is not taken (another pid than the module's start record's, an end the records already
+     * tell) or no record was read yet.
+     */
+    tellLauncherLine(end: LauncherFileLine): LauncherToldEnd | undefined {
+        const t0 = this.t0;
+        if (t0 === undefined) return undefined;
+        return this.endedMidRun.launcherLine(end, (ns) => offset(ns - t0));
     }
 
     private tellRecord(r: TraceRecord): string | undefined {

@@ -14,11 +14,15 @@ import { pipeline } from 'node:stream/promises';
 import { createGunzip } from 'node:zlib';
 import type { Artifact, RunArtifacts } from '@contract-studio/build-service';
 import { safeName } from '../terminal-text.js';
-import { isLogFileName } from '@contract-studio/build-service/trace';
+import { isLogFileName, LAUNCHER_LINES_FILE } from '@contract-studio/build-service/trace';
 import { crashFileModule } from '@contract-studio/build-service/crash-files';
 
-/** A file of a run's logs folder: a module's CSV log, or the crash file of a module that crashed (`<MODULE>.crash`, docs/runtime-api.md "Crash file"). */
-const isRunLogFile = (name: string) => isLogFileName(name) || crashFileModule(name) !== undefined;
+/**
+ * A file of a run's logs folder: a module's CSV log, the crash file of a module that crashed
+ * (`<MODULE>.crash`, docs/runtime-api.md "Crash file"), or the launcher's own lines
+ * (`contract-launch.log`: how each module ended, read by `contract trace OUT`).
+ */
+const isRunLogFile = (name: string) => isLogFileName(name) || crashFileModule(name) !== undefined || name === LAUNCHER_LINES_FILE;
 
 /**
  * Why the default logs folder (DIR/logs) cannot be written, or null. It is a name in the project
@@ -89,7 +93,7 @@ async function openSubfolder(parent: fsp.FileHandle, name: string, exclusive: bo
 }
 
 /**
- * One run per logs folder: the CSV logs and crash files (regular `*.csv` and `<MODULE>.crash` files) already in the
+ * One run per logs folder: the CSV logs, crash files and launcher lines (regular `*.csv`, `<MODULE>.crash` and `contract-launch.log` files) already in the
  * folder open as `dir` — the previous run's — are moved into `previous/run-<time of the newest>/`
  * (never deleted; a link or anything else there is left alone). Returns that folder and the
  * number moved, or null when there was none.
@@ -169,8 +173,9 @@ async function holdingLogsFolder<T>(dir: fsp.FileHandle, shownAs: string, work: 
  */
 export async function saveLogs(artifacts: RunArtifacts | null, to: string, noFollowDir: boolean): Promise<SavedLogs> {
     const result: SavedLogs = { saved: [], refused: [], movedAside: null };
-    // the CSV logs and the crash files (contract trace OUT tells where a module crashed from its crash file)
-    const files = (artifacts?.files ?? []).filter((f) => /^[\w.-]+\.csv$/.test(f.name) || crashFileModule(f.name) !== undefined);
+    // the CSV logs, the crash files (contract trace OUT tells where a module crashed from its crash file)
+    // and the launcher's lines (how each module ended: one killed from outside told at its end)
+    const files = (artifacts?.files ?? []).filter((f) => /^[\w.-]+\.csv$/.test(f.name) || crashFileModule(f.name) !== undefined || f.name === LAUNCHER_LINES_FILE);
     if (!files.length) return result;
     await fsp.mkdir(to, { recursive: true });
     const dir = await fsp.open(to, constants.O_RDONLY | constants.O_DIRECTORY | (noFollowDir ? constants.O_NOFOLLOW : 0));

@@ -7,7 +7,7 @@
  */
 import { stat } from 'node:fs/promises';
 import { resolve } from 'node:path';
-import { STORY_FOLLOWED, StoryTeller, TWIN_LOGS_WHY, isUnknown, moduleNamedByLog, ownString, twinLogs, type KnownRecord, type RecordCounts, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
+import { LauncherLinesQueue, STORY_FOLLOWED, StoryTeller, TWIN_LOGS_WHY, isUnknown, moduleNamedByLog, ownString, twinLogs, type KnownRecord, type RecordCounts, type TraceRecord, type TraceRecordBase, type UnknownRecord, type LauncherFileLine } from '@contract-studio/build-service/trace';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { escapeControls, safeName } from '../terminal-text.js';
@@ -16,6 +16,7 @@ import { jsonLine } from '../trace-files.js';
 import { closeLogs, jsonLinesOf, LINE_CHARS_HELD, openLogFolder, streamTrace, windowFor, type OpenLog } from '../trace-stream.js';
 import { traceFileBatches } from '../trace-file-stream.js';
 import { open } from 'node:fs/promises';
+import { readLauncherLines } from '../launcher-lines.js';
 
 /** Lines of a trace file that are no record, named one by one before they are only counted. */
 const NAMED_PROBLEMS = 20;
@@ -50,7 +51,11 @@ export const traceCommand: Command = {
             return EXIT_FAILURE;
         }
         try {
-            const { late, problems, counts } = format === 'json' ? await printJson(logs, io) : await printStory(logs, io);
+            // the launcher's own lines (its end line of a module killed from outside): the story only
+            const launcherProblems: string[] = [];
+            const launcher = format === 'text' ? await readLauncherLines(dir, launcherProblems) : [];
+            const { late, problems, counts } = format === 'json' ? await printJson(logs, io) : await printStory(logs, io, new LauncherLinesQueue(launcher));
+            problems.push(...launcherProblems);
             if (format === 'text') await printCrashSites(dir, io, problems);
             for (const p of problems) io.err(`contract trace: warning: ${p}\n`);
             if (late) io.err(`contract trace: warning: ${late} record(s) were more than ${windowFor(logs.length)} lines (fewer when lines are longer than ${LINE_CHARS_HELD} characters) from their time's place in their log: told later than their time\n`);
@@ -133,9 +138,9 @@ async function printJson(logs: readonly OpenLog[], io: CliIO): Promise<Printed> 
  * The story: its lines printed as they come (few: a reader gone is seen at the next), then what
  * the logs say of modules that did not end (a crash leaves no exit record), then the counts.
  */
-async function printStory(logs: readonly OpenLog[], io: CliIO): Promise<Printed> {
+async function printStory(logs: readonly OpenLog[], io: CliIO, launcher?: LauncherLinesQueue): Promise<Printed> {
     const stream = streamTrace(logs);
-    const story = new Story(new ModuleEnds(logs));
+    const story = new Story(new ModuleEnds(logs), launcher);
     for await (const batch of stream.batches) {
         if (!(await print(io, batch.map((r) => story.line(r)).join('')))) return { late: stream.outOfOrder(), problems: stream.problems() };
     }
@@ -166,23 +171,38 @@ async function print(io: CliIO, piece: string): Promise<boolean> {
 class Story {
     private readonly teller = new StoryTeller();
 
-    constructor(private readonly ends: ModuleEnds) {}
+    /** `launcher`: the logs folder's launcher end lines (contract-launch.log), told in time order among the records. */
+    constructor(private readonly ends: ModuleEnds, private readonly launcher?: LauncherLinesQueue) {}
 
     /** The records told (readable ones) and, apart, the unreadable lines: what the line of counts says. */
     get counts(): RecordCounts {
         return this.teller.recordCounts;
     }
 
-    /** The record's line of the story ('' when it tells nothing). */
+    /** The record's line of the story ('' when it tells nothing), after those of the launcher's lines said before its time. */
     line(r: TraceRecord): string {
+        const before = this.launcher && !isUnknown(r) ? this.launcherLines(this.launcher.before((r as TraceRecordBase).monoNs)) : '';
         this.ends.see(r);
         const told = this.teller.tell(r);
-        return told === undefined ? '' : safeName(told) + '\n';
+        return before + (told === undefined ? '' : safeName(told) + '\n');
+    }
+
+    /** The story's lines for the launcher's end lines `lines` (a module it says ended on its own, when the line is taken). */
+    private launcherLines(lines: readonly LauncherFileLine[]): string {
+        let out = '';
+        for (const l of lines) {
+            const told = this.teller.tellLauncherLine(l);
+            if (!told) continue;
+            this.ends.launcherSaid(told.module, l.line);
+            out += safeName(told.text) + '\n';
+        }
+        return out;
     }
 
     /** Each line one line: a newline or a bidi override carried by a record (a trace file's detail, an unreadable line's reason) is escaped, never a line of its own. */
     end(): string {
-        return [...this.ends.lines(), ...this.teller.endLines(), ...this.teller.flowLines(), ...this.teller.schemaLines(), this.teller.summary()].map((l) => safeName(l) + '\n').join('') + this.ends.unreadable().map((l) => safeName(l) + '\n').join('');
+        const launcher = this.launcher ? this.launcherLines(this.launcher.rest()) : '';
+        return launcher + [...this.ends.lines(), ...this.teller.endLines(), ...this.teller.flowLines(), ...this.teller.schemaLines(), this.teller.summary()].map((l) => safeName(l) + '\n').join('') + this.ends.unreadable().map((l) => safeName(l) + '\n').join('');
     }
 }
 
@@ -242,6 +262,9 @@ export class ModuleEnds {
     private notFollowed = 0;
     /** Modules other modules' records name (NAMING_KINDS), at most MODULES_FOLLOWED: the first such record's time and module, and its kind. */
     private readonly named = new Map<string, { at: bigint; by: string; kind: string }>();
+
+    /** Modules the launcher's own end line (the logs folder's contract-launch.log) told ended, with that line. */
+    private readonly launcherEnds = new Map<string, string>();
 
     /** Modules with more than one log in the folder, and those logs' names. */
     private readonly twins = new Map<string, string[]>();
@@ -307,6 +330,12 @@ export class ModuleEnds {
         }
     }
 
+    /** The launcher's end line `line` (its pid the module's) told how `module` ended: its last record's line says it. */
+    launcherSaid(module: string, line: string): void {
+        const m = this.modules.get(module);
+        if (m !== undefined) this.launcherEnds.set(m, ownString(line));
+    }
+
     /** The unreadable lines, the first few by file and line (the summary counts them all). */
     unreadable(): string[] {
         const more = this.unknownCount - this.unknowns.length;
@@ -340,7 +369,9 @@ export class ModuleEnds {
                     ? `${at(this.last.get(m)!)} ${m.padEnd(4)} its log was cut here by the build service (its bound on a collected log): later records, its exit record among them, are not in it`
                     : capped !== undefined
                         ? `${at(this.last.get(m)!)} ${m.padEnd(4)} its log ends capped: the module ended after ${capped.why}, so its exit record is not in it (one of the ${capped.dropped} records not written), not lost to a crash; the launcher's output says how it ended`
-                        : `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record: no exit record follows (it crashed, was killed, or its code called exit(); the launcher's output says which)${this.capped.has(m) ? ` (its log had reached its bound; the last log-capped record, which the runtime writes at any end but a SIGKILL, is missing too)` : ''}`);
+                        : this.launcherEnds.has(m)
+                            ? `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record: no exit record follows (the launcher's line: contract-launch: ${this.launcherEnds.get(m)!})`
+                            : `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record: no exit record follows (it crashed, was killed, or its code called exit(); the launcher's output says which)${this.capped.has(m) ? ` (its log had reached its bound; the last log-capped record, which the runtime writes at any end but a SIGKILL, is missing too)` : ''}`);
             }
         }
         // a log with records but not its start: cut or rewritten after its module began (its own

@@ -28,7 +28,8 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         #                 [STDIN_<MODULE>=file] (what that module reads on its stdin, a path from this folder; else /dev/null)
         #                 [REQUIRE_REALTIME=1] (refuse to run unless the modules may run at SCHED_FIFO; also CONTRACT_REQUIRE_REALTIME=1;
         #                 checked before the logs are moved: a refused run leaves them in LOG_DIR)
-        #                 one run per LOG_DIR, as contract run: the CSV logs of the run before are moved to
+        #                 one run per LOG_DIR, as contract run: the CSV logs of the run before (and the launcher's
+        #                 contract-launch.log: its lines, modules' ends among them) are moved to
         #                 LOG_DIR/previous/run-<time of the newest>/ first (never deleted)
         #                 stopping (DURATION, Ctrl-C, make kill) stops the SUPERVISORS first, then the others:
         #                 their undo still reaches ORD and the modules
@@ -73,7 +74,7 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         	@if ls '$(LOG_DIR)'/*.csv >/dev/null 2>&1; then \\
         	  to='$(LOG_DIR)'/previous/run-$$(date -r "$$(ls -t '$(LOG_DIR)'/*.csv | head -n 1)" +%Y-%m-%dT%H-%M-%S); \\
         	  at="$$to"; n=2; while [ -e "$$to" ]; do to="$$at-$$n"; n=$$((n + 1)); done; \\
-        	  if ! { mkdir -p "$$to" && mv '$(LOG_DIR)'/*.csv "$$to"/; }; then \\
+        	  if ! { mkdir -p "$$to" && mv '$(LOG_DIR)'/*.csv "$$to"/ && { [ ! -f '$(LOG_DIR)'/contract-launch.log ] || mv '$(LOG_DIR)'/contract-launch.log "$$to"/; }; }; then \\
         	    own=$$(stat -c %U "$$(if [ -d '$(LOG_DIR)'/previous ]; then echo '$(LOG_DIR)'/previous; else echo '$(LOG_DIR)'; fi)"); \\
         	    me=$$(id -un); \\
         	    if [ "$$own" != "$$me" ]; then echo "make run: cannot move the previous run's logs to $$to: the logs folder belongs to $$own, and this is $$me: remove it (as $$own: rm -rf '$(LOG_DIR)'), run as $$own, or give another LOG_DIR=" >&2; \\

@@ -10,7 +10,7 @@
  * with status 3`): it comes as the module is reaped, whether or not any other module sends it a
  * request (launcherGoneSign).
  */
-import { launcherEndLine, receiverGone, stuckSaysGone, type KnownRecord } from '@contract-studio/build-service/trace';
+import { endedOnItsOwn, launcherEndLine, receiverGone, stuckSaysGone, type KnownRecord } from '@contract-studio/build-service/trace';
 
 export interface GoneSign {
   /** The module the record says is gone. */
@@ -38,18 +38,8 @@ export function goneModuleSign(k: KnownRecord): GoneSign | undefined {
   return { module, words: `${k.module}: ${k.detail}`.slice(0, MAX_WORDS) };
 }
 
-/**
- * Whether the launcher's words say the module ended on its own, not by the run's stop: a signal it
- * did not send (`died by signal 9 (Killed)`), an exit with a status (`exited with status 3`), or
- * with 0 before the run's end (its code's `exit(0)`). A module ending on the stop's KILL request
- * (`exited with status 0`, `... while the run stopped`) or terminated by the launcher's own SIGTERM
- * (`terminated by signal 15`) ended as the run did: no sign (its exit record says the same).
- */
-export function endedOnItsOwn(how: string): boolean {
-  if (how.startsWith('died by signal')) return true;
-  const status = /^exited with status (\d{1,3})( before the run's end)?/.exec(how);
-  return !!status && (status[1] !== '0' || status[2] !== undefined);
-}
+/** Whether the launcher's words say the module ended on its own (build-service trace/launcher-end-line.ts). */
+export { endedOnItsOwn };
 
 /**
  * The module one of the launcher's own lines says ended (`line`: its text without the

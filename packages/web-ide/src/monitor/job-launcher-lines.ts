@@ -72,3 +72,15 @@ export function applyLauncherLines(model: MonitorModel, files: readonly LogFile[
   if (!first) return;
   for (const l of lines) model.launcherLine(l.line, (l.wallMs - first.wallMs) * 1e6);
 }
+
+/**
+ * Applies a logs folder's launcher end lines (GET /api/log-folder `launcherLines`: its
+ * contract-launch.log, which the launcher alone writes, each line with its time on the records'
+ * clock) to `model`, the replay of that folder's logs, each at its own time (MonitorModel.launcherLineAtMono).
+ */
+export function applyFolderLauncherLines(model: MonitorModel, lines: readonly { monoNs: string; line: string }[] | undefined): void {
+  for (const l of (lines ?? []).slice(0, MAX_LINES)) {
+    if (typeof l?.monoNs !== 'string' || typeof l.line !== 'string' || !/^\d{1,20}$/.test(l.monoNs)) continue;
+    model.launcherLineAtMono(l.line, Number(l.monoNs));
+  }
+}

@@ -7,7 +7,7 @@
 import { describe, it, expect } from 'vitest';
 import { MonitorModel } from './monitor-model.js';
 import { launcherGoneSign } from './gone-signs.js';
-import { applyLauncherLines, launcherLinesOf } from './job-launcher-lines.js';
+import { applyFolderLauncherLines, applyLauncherLines, launcherLinesOf } from './job-launcher-lines.js';
 import { crashedModulesText } from './panel-text.js';
 import { modulesText } from './monitor-panel.js';
 import type { MonitorState } from './monitor-state.js';
@@ -119,5 +119,23 @@ describe("a replay of a job's logs, with the launcher's lines of its log", () =>
     expect(gone(m.stateAt(300_000_000))).toEqual(['SRT']);
     expect(gone(m.stateAt(m.end))).toEqual(['SRT']);
     expect(crashedModulesText(m.stateAt(m.end).modules)).toBe('⚠ SRT gone at +0.300000 s: contract-launch: module SRT (pid 41) died by signal 9 (Killed)');
+  });
+});
+
+describe("a replay of a logs folder, with its contract-launch.log (the launcher's own lines, on the records' clock)", () => {
+  it('shows the module gone at the line\'s own time; a line naming another pid, or malformed, is not taken', () => {
+    const m = run(); // first record at mono 1.0 s
+    m.recordsEnded();
+    applyFolderLauncherLines(m, [
+      { monoNs: '1250000000', line: 'module SRT (pid 99) died by signal 9 (Killed)' },
+      { monoNs: 'x', line: 'module SRT (pid 41) died by signal 9 (Killed)' },
+      { monoNs: '1300000000', line: 'module SRT (pid 41) died by signal 9 (Killed)' },
+    ]);
+    expect(m.marks.filter((k) => k.kind === 'crash')).toEqual([{ t: 300_000_000, kind: 'crash', where: 'SRT', label: 'SRT gone: contract-launch: module SRT (pid 41) died by signal 9 (Killed)' }]);
+    expect(gone(m.stateAt(299_000_000))).toEqual([]);
+    expect(gone(m.stateAt(m.end))).toEqual(['SRT']);
+    const n = run();
+    applyFolderLauncherLines(n, [{ monoNs: '1250000000', line: 'module SRT (pid 99) died by signal 9 (Killed)' }]);
+    expect(gone(n.stateAt(n.end))).toEqual([]);
   });
 });

@@ -25,7 +25,7 @@ import { api, socketUrl } from '../api.js';
 import { MonitorModel } from './monitor-model.js';
 import { recordedRunSteps, type RecordedRun } from './recorded-run.js';
 import { recordedRunsToLetGo } from './recorded-runs.js';
-import { applyLauncherLines } from './job-launcher-lines.js';
+import { applyFolderLauncherLines, applyLauncherLines } from './job-launcher-lines.js';
 import type { MonitorView } from './model-view.js';
 import { RemoteMonitorModel } from './remote-model.js';
 import { jobOutcome, CONNECTION_LOST, LOST_TRACE } from './live-follow-protocol.js';
@@ -440,8 +440,10 @@ export class MonitorController {
     const whole = tooLarge || listing.more ? ` — \`contract trace ${folder || '.'}\` tells a run of any length` : '';
     // a log read in part does not run to the run's end: nothing is said of what its end leaves (ORD gone, undos unserved)
     const { model, leftOut: notRecords } = await recordedRun(files, undefined, !partly.length);
+    // the launcher's own end lines (the folder's contract-launch.log): a module killed from outside shown gone at its end, as live
+    applyFolderLauncherLines(model, 'launcherLines' in listing ? listing.launcherLines : undefined);
     // a log read in part (its first lines: past what the server sends of one) is said with how much, and where the rest is
-    const unread = [...partly, ...notRecords];
+    const unread = [...partly, ...notRecords, ...('launcherLinesProblem' in listing && listing.launcherLinesProblem ? [listing.launcherLinesProblem] : [])];
     const counted = unreadableNote(recordCounts(model));
     const inFolder = paths.length + listing.more + listing.notReadCount;
     const read = leftOut.length ? `${files.length} of ${inFolder} CSV logs in ${where}${counted} (left out: ${leftOut.join('; ')})${whole}` : `${files.length} CSV log(s) in ${where}${counted}`;

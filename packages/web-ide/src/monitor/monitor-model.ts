@@ -482,6 +482,16 @@ export class MonitorModel implements MonitorView {
     return true;
   }
 
+  /**
+   * One of the launcher's end lines with its time on the records' clock (`monoNs`: a logs folder's
+   * contract-launch.log, written by the launcher alone), applied as launcherLine at that time on the
+   * run's time line; false when no record was read (no time line) or it is not taken.
+   */
+  launcherLineAtMono(line: string, monoNs: number): boolean {
+    if (this.t0 === undefined || !Number.isFinite(monoNs)) return false;
+    return this.launcherLine(line, monoNs - this.t0);
+  }
+
   /** A parsed record (kept as it is). */
   push(r: TraceRecord): void {
     const t = this.timeOfRecord(r);
