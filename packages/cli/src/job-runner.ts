@@ -13,6 +13,7 @@ import { folderOption, type ParsedArgs } from './args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO } from './command.js';
 import { addLimitOption, DEFAULT_PROCESS_LIMIT, emptyLimitOptions, modulesUnderProcessLimit, RENAME_JOURNAL_NAME, SANDBOX_CHOICES, SRC_GEN_DIR, UNUSED_TREE_LINE, withoutStuckAdvice, type LimitOptions } from '@contract-studio/conventions';
 import { defaultRuntimeSource } from './runtime-source.js';
+import { LiveModuleEnds } from './live-module-ends.js';
 import { safeName } from './terminal-text.js';
 import { insideProjectRefusal } from './enclosing-project.js';
 
@@ -338,7 +339,13 @@ export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['r
     // own (`/work/src-gen/F:L: undefined reference to ...`, and the same after `/usr/bin/ld: `), which
     // the diagnostic stands for: `F:L: message` (F relative to src-gen, the function ld named left out)
     const printedLinkerPlaces = new Set<string>();
+    // a module that ends on its own mid-run, told from the launcher's line as it comes (its pid the module's, from the live trace)
+    const moduleEnds = new LiveModuleEnds();
     return (e) => {
+        if (e.type === 'trace') {
+            if (opts.format === 'text') for (const told of moduleEnds.records(e.records)) io.err(`${told}\n`);
+            return;
+        }
         noteBuildErrorLine(buildTail, e);
         if (e.type === 'diagnostic') {
             if (opts.format !== 'text') return;
@@ -383,6 +390,9 @@ export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['r
                 // module's errors) and the launcher's lines (it writes on stderr) go to stderr
                 const text = e.source === 'launcher' ? `contract-launch: ${e.line}\n` : `[${e.source}] ${e.line}\n`;
                 if (e.stream === 'stderr') io.err(text); else io.out(text);
+                // the launcher's line of a module's end on its own: one line saying it, as the IDE shows it gone
+                const ended = e.source === 'launcher' ? moduleEnds.launcherLine(e.line) : undefined;
+                if (ended) io.err(`${ended}\n`);
                 // the launcher's first line: in the bwrap or docker sandbox (auto is one of them) the run has a pid namespace of its own
                 if (e.source === 'launcher' && e.line.startsWith('run directory ') && opts.sandbox !== 'none') io.err(`${SANDBOX_PIDS_NOTE}\n`);
             }
