@@ -125,7 +125,8 @@ async function moveAsidePrevious(dir: fsp.FileHandle, to: string): Promise<Saved
         } finally {
             await run.close().catch(() => {});
         }
-        return { folder: join(to, PREVIOUS_DIR, folder), files: old.length };
+        // the logs counted (the launcher's lines file goes with them, uncounted: `N file(s) moved` are logs)
+        return { folder: join(to, PREVIOUS_DIR, folder), files: old.filter((o) => o.name !== LAUNCHER_LINES_FILE).length };
     } finally {
         await previous.close().catch(() => {});
     }

@@ -13,7 +13,7 @@ import { isAbsolute, join, relative, resolve, sep } from 'node:path';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import type { JobEvent } from '@contract-studio/build-service';
-import { StoryTeller } from '@contract-studio/build-service/trace';
+import { LAUNCHER_LINES_FILE, StoryTeller } from '@contract-studio/build-service/trace';
 import { LiveTrace, settleTraceFile } from '../live-trace.js';
 import { traceNameProblem } from '../trace-files.js';
 import { CLI_BUILD_SECONDS, CLI_RUN_ROOM_SECONDS, COMMON_FLAGS, COMMON_REPEATABLE, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, LIMIT_USAGE, onTerminal, parseJobOptions, parseLimitOptions, reportBuild, runJob } from '../job-runner.js';
@@ -265,7 +265,8 @@ export const runCommand: Command = {
             await live?.abandon();
             return EXIT_FAILURE;
         }
-        const logs = savedLogs.saved;
+        // the CSV logs (and crash files) saved; the launcher's lines file beside them is no log: not counted nor listed
+        const logs = savedLogs.saved.filter((name) => name !== LAUNCHER_LINES_FILE);
         let trace: { file: string; records: number; unreadable: number } | null = null;
         // each periodic schema's figures, for a CI script's gate (--format json only): told by the
         // pass over the saved logs that checks the trace file, else by a read of its own
