@@ -131,6 +131,22 @@ describe('GET /api/log-folder', () => {
     expect('crashSites' in ((await (await get('/api/log-folder?path=logs')).json()) as object)).toBe(false);
   });
 
+  it("sends the end lines of the folder's contract-launch.log (the launcher's own lines), each with its time; a link there is not read, said", async () => {
+    mkdirSync(join(ws, 'launched'));
+    writeFileSync(join(ws, 'launched', 'MAB_1.csv'), 'mono_ns,wall_time,module,event,peer,port,size,detail\n');
+    writeFileSync(join(ws, 'launched', 'contract-launch.log'), '100 run directory /x\n300 module MAB (pid 41) died by signal 9 (Killed)\n200 module MAA (pid 40) exited with status 3\nnot a line\n400 module MSC (pid 42) died by signal 9 (Killed)');
+    const listing = (await (await get('/api/log-folder?path=launched')).json()) as { logs: string[]; launcherLines?: unknown; launcherLinesProblem?: string };
+    expect(listing.logs).toEqual(['launched/MAB_1.csv']); // the file is no log
+    // end lines only, in time order; the last one, cut (no line end), is none
+    expect(listing.launcherLines).toEqual([{ monoNs: '200', line: 'module MAA (pid 40) exited with status 3' }, { monoNs: '300', line: 'module MAB (pid 41) died by signal 9 (Killed)' }]);
+    expect(listing.launcherLinesProblem).toBeUndefined();
+    mkdirSync(join(ws, 'linked-launcher'));
+    symlinkSync(join(ws, 'launched', 'contract-launch.log'), join(ws, 'linked-launcher', 'contract-launch.log'));
+    const linked = (await (await get('/api/log-folder?path=linked-launcher')).json()) as { launcherLines?: unknown; launcherLinesProblem?: string };
+    expect(linked.launcherLines).toBeUndefined();
+    expect(linked.launcherLinesProblem).toMatch(/^linked-launcher\/contract-launch\.log: not read \(/);
+  });
+
   it('past 256 logs: the first 256 by name, the others counted', async () => {
     const many = (await (await get('/api/log-folder?path=many')).json()) as { logs: string[]; more: number; notRead: string[]; notReadCount: number };
     expect(many.logs).toHaveLength(256);
