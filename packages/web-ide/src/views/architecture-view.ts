@@ -12,6 +12,7 @@ import type { ArchSchema, ArchLocation } from '../lsp/architecture-model.js';
 import { PanZoom, type Size } from './pan-zoom.js';
 import { HEAD } from './schema-graph.js';
 import { layoutSchema, SMALLEST_FONT_PX, MIN_FONT_PX, type SchemaLayout } from './schema-layout.js';
+import { failingOn, isLayoutFault, type LayoutFault } from './layout-faults.js';
 
 const SVG = 'http://www.w3.org/2000/svg';
 const elk = new ELK({ workerFactory: () => new Worker(elkWorkerUrl) });
@@ -176,6 +177,8 @@ export class ArchitectureView {
   private onObserved: Array<() => void> = [];
   private cursor: CursorAt | undefined;
   private followed: string | undefined;
+  /** The layouts ELK is made to fail on (failLayouts, a test hook): none but in the tests. */
+  private fault: LayoutFault | undefined;
 
   constructor(
     private readonly fetchSchemas: () => Promise<ArchSchema[]>,
@@ -256,6 +259,18 @@ export class ArchitectureView {
   /** Zoom scale of the drawing (1 = natural size). */
   get scale(): number {
     return this.panZoom.view.scale;
+  }
+
+  /**
+   * Test hook (`__ide.views.arch.failLayouts('fold')` in the browser tests): from now on ELK fails on
+   * the layouts `fault` names (layout-faults.ts; undefined: none), and the schema shown is drawn
+   * again, so that what is drawn when ELK fails can be seen in the page.
+   */
+  async failLayouts(fault: LayoutFault | undefined): Promise<void> {
+    if (fault !== undefined && !isLayoutFault(fault)) throw new Error(`Unknown layout fault ${JSON.stringify(fault)}: fold, asked or every`);
+    this.fault = fault;
+    if (this.drawn) this.drawn.source = undefined;
+    await this.draw();
   }
 
   /** Shows schema `name` (no-op when it is shown or unknown). */
@@ -356,7 +371,7 @@ export class ArchitectureView {
   }
 
   /**
-   * The layouts made, by schema model and pane size (the last LAYOUTS_KEPT): the Monitor shows the
+   * The layouts made, by schema model and pane size (and the fault failLayouts asked; the last LAYOUTS_KEPT): the Monitor shows the
    * schema active at its cursor, and a run whose schemas take turns switched the diagram back and
    * forth several times a second, each time laying the schema out again in ELK's worker (up to four
    * layouts with the folded tries), competing for the CPU with the run. A layout depends on nothing
@@ -368,14 +383,14 @@ export class ArchitectureView {
   private readonly layouts = new Map<string, Promise<SchemaLayout>>();
 
   private layoutOf(schema: ArchSchema, source: string, pane: Size | undefined): Promise<SchemaLayout> {
-    const key = `${pane ? `${pane.width}x${pane.height}` : '-'} ${source}`;
+    const key = `${pane ? `${pane.width}x${pane.height}` : '-'} ${this.fault ?? ''} ${source}`;
     const kept = this.layouts.get(key);
     if (kept) {
       this.layouts.delete(key);
       this.layouts.set(key, kept); // the most recent last
       return kept;
     }
-    const graph = layoutSchema(schema, pane, (g) => elk.layout(g));
+    const graph = layoutSchema(schema, pane, failingOn(this.fault, (g) => elk.layout(g)));
     this.layouts.set(key, graph);
     graph.catch(() => this.layouts.get(key) === graph && this.layouts.delete(key));
     for (const old of this.layouts.keys()) if (this.layouts.size > LAYOUTS_KEPT) this.layouts.delete(old);

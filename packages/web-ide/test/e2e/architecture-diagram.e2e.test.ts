@@ -3,11 +3,10 @@
  * schema at the cursor, keeps its labels readable at the docked size, zooms at the pointer, pans,
  * fits, and a click on a module, port or flow goes to its definition.
  */
-import { writeFileSync } from 'node:fs';
-import { join } from 'node:path';
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { startSession, openIde, shot, placeCursor, activeTab, openFile, cursorLine, type Session } from './harness.js';
 import { axeScan, seriousOf } from './axe.js';
+import { writeChainSchema } from './chain-schema.js';
 
 let s: Session;
 const pane = '.side-pane .arch-canvas';
@@ -168,18 +167,7 @@ describe('architecture diagram docked', () => {
   });
   it('a schema file made on disk shows up; a long loop (8 modules in a chain) is folded into rows: every module readable in the tab, none cut off', async () => {
     const { page } = s;
-    const names = ['CHA', 'CHB', 'CHC', 'CHD', 'CHE', 'CHF', 'CHG', 'CHH'];
-    for (const n of names) writeFileSync(join(s.workspace, `${n.toLowerCase()}.contract`), `synchronous module ${n} {\n    scheduling { C=300us; }\n    data flows { in :0 float u; out :1 float y; }\n}\n`);
-    const pairs = names.slice(1).map((n, i) => [names[i]!, n]);
-    writeFileSync(join(s.workspace, 'chain.contract'), [
-      ...names.map((n) => `import "${n.toLowerCase()}.contract";`), '',
-      'periodic schema chain() {',
-      '    realtime { PERIOD=10ms; CRITICAL_DELAY=10ms; }',
-      `    modules { ${names.map((n) => `${n} ();`).join(' ')} }`,
-      `    scheduling graph { ${pairs.map(([a, b]) => `${a} -> ${b};`).join(' ')} }`,
-      `    communications { ${pairs.map(([a, b]) => `${a}:1 -> ${b}:0 * 1;`).join(' ')} }`,
-      '}', '',
-    ].join('\n'));
+    writeChainSchema(s.workspace);
     // the files appear in the explorer (the workspace watcher); the cursor in the schema shows it
     await page.locator('.tree-row[data-path="chain.contract"]').waitFor({ timeout: 15_000 });
     await openFile(page, 'chain.contract');
