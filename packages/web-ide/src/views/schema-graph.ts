@@ -99,6 +99,9 @@ const FOLDED_SPACING = {
   'elk.spacing.edgeNode': '5',
   'elk.spacing.edgeEdge': '5',
   'elk.padding': '[top=4,left=4,bottom=4,right=4]',
+  // no extra room around the flows that run from one row (column) to the next: the 4-module loop
+  // docked at 1366 x 768, folded into two columns, was 20 px too wide for the readable size
+  'elk.layered.wrapping.additionalEdgeSpacing': '0',
 };
 
 /** The flows and precedences between modules of the schema whose ports exist (a model with errors may name others: ELK would refuse them). */
@@ -136,6 +139,9 @@ export function graphOf(schema: ArchSchema, asked: LayoutAsked): ElkNode {
       'elk.layered.spacing.nodeNodeBetweenLayers': down ? (fold ? '20' : '50') : '90',
       'elk.edgeRouting': 'ORTHOGONAL',
       'elk.edgeLabels.inline': 'true',
+      // a loop's flow back is the one back in the schema's order of modules (velocityLoop: MOT -> WHL, WHL
+      // drawn first), not one ELK picks (it drew WHL last, its flow to ODO around the other three)
+      'elk.layered.cycleBreaking.strategy': 'MODEL_ORDER',
       // a long chain (a periodic loop of 8 modules) folded into rows (columns) shaped like the pane
       ...(fold ? { 'elk.layered.wrapping.strategy': 'MULTI_EDGE', 'elk.aspectRatio': fold.toFixed(2), ...FOLDED_SPACING } : {}),
     },

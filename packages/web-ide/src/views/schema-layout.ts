@@ -53,9 +53,9 @@ export async function layoutSchema(schema: ArchSchema, pane: Size | undefined, e
   // Every try was made whatever it gave, and the Monitor's first diagram of the tutorial was laid out
   // four times in ELK's worker while gcc built the job (straight, then three folds giving one drawing).
   const readable = MIN_FONT_PX / SMALLEST_FONT_PX;
-  const fitScale = (g: ElkNode) => Math.min((pane.width - 32) / Math.max(1, g.width ?? 1), (pane.height - 32) / Math.max(1, g.height ?? 1));
+  // as *Fit* shows it (pan-zoom.ts fitView: 16 px from the pane's edges; renderSchema: 20 px around the drawing)
+  const fitScale = (g: ElkNode) => Math.min((pane.width - 32) / Math.max(1, (g.width ?? 1) + 40), (pane.height - 32) / Math.max(1, (g.height ?? 1) + 40));
   let best = straight;
-  let folding = false;
   for (const k of [1, 2, 4]) {
     if (fitScale(best) >= readable) break;
     let folded: ElkNode;
@@ -67,14 +67,15 @@ export async function layoutSchema(schema: ArchSchema, pane: Size | undefined, e
     const gain = fitScale(folded) / fitScale(best);
     if (gain > 1) best = folded;
     if (gain <= FOLD_GAIN) break;
-    folding = true;
   }
-  // folding showed more of the schema but not all of it readable (a loop of 4 modules with a flow
-  // back, docked at 1366 x 768: 495 x 362 px, shown at 0.42 left to right): the other direction,
-  // folded like the pane, is tried once, kept when it shows the schema larger; an error there keeps
-  // what was made. A schema folding did nothing for (two modules flowing both ways) is not turned:
-  // one layout more for the same drawing, while the Monitor opens during a build
-  if (folding && fitScale(best) < readable) {
+  // still not all of it readable: the other direction, folded like the pane, is tried once, kept when
+  // it shows the schema larger; an error there keeps what was made. Docked at 1366 x 768 (497 x 366
+  // px, drawn left to right), a loop of 4 modules with a flow back (velocityLoop) is folded into two
+  // columns top to bottom and shown whole at 0.83 (0.62 before: left to right, then its other
+  // direction as one column); two modules whose flows go both ways, which folding does nothing for
+  // (schemaReceptionMessage), are drawn top to bottom at 0.78 (0.55 before: left to right, the other
+  // direction not tried)
+  if (fitScale(best) < readable) {
     const other = direction === 'DOWN' ? 'RIGHT' : 'DOWN';
     const turned = await elk(graphOf(schema, { direction: other, fold: pane.width / Math.max(1, pane.height) })).catch(() => undefined);
     if (turned && fitScale(turned) > fitScale(best) * FOLD_GAIN) best = turned;
