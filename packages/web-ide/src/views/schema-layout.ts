@@ -56,6 +56,7 @@ export async function layoutSchema(schema: ArchSchema, pane: Size | undefined, e
   // as *Fit* shows it (pan-zoom.ts fitView: 16 px from the pane's edges; renderSchema: 20 px around the drawing)
   const fitScale = (g: ElkNode) => Math.min((pane.width - 32) / Math.max(1, (g.width ?? 1) + 40), (pane.height - 32) / Math.max(1, (g.height ?? 1) + 40));
   let best = straight;
+  let folding = false;
   for (const k of [1, 2, 4]) {
     if (fitScale(best) >= readable) break;
     let folded: ElkNode;
@@ -67,15 +68,23 @@ export async function layoutSchema(schema: ArchSchema, pane: Size | undefined, e
     const gain = fitScale(folded) / fitScale(best);
     if (gain > 1) best = folded;
     if (gain <= FOLD_GAIN) break;
+    folding = true;
   }
   // still not all of it readable: the other direction, folded like the pane, is tried once, kept when
-  // it shows the schema larger; an error there keeps what was made. Docked at 1366 x 768 (497 x 366
-  // px, drawn left to right), a loop of 4 modules with a flow back (velocityLoop) is folded into two
-  // columns top to bottom and shown whole at 0.83 (0.62 before: left to right, then its other
-  // direction as one column); two modules whose flows go both ways, which folding does nothing for
-  // (schemaReceptionMessage), are drawn top to bottom at 0.78 (0.55 before: left to right, the other
-  // direction not tried)
-  if (fitScale(best) < readable) {
+  // it shows the schema larger; an error there keeps what was made. Tried after a fold that showed more,
+  // or when the drawing is held back by its length along the way it runs (too wide left to right, too
+  // tall top to bottom), which the other direction lays across; not for a drawing held back across it
+  // (two modules whose flows go both ways top to bottom in the Monitor: one layout more, the same size).
+  // Docked at 1366 x 768 (497 x 366 px, drawn left to right), a loop of 4 modules with a flow back
+  // (velocityLoop) is folded into two columns top to bottom and shown whole at 0.83 (0.62 before: left
+  // to right, then its other direction as one column); two modules whose flows go both ways, which
+  // folding does nothing for (schemaReceptionMessage), are drawn top to bottom at 0.78 (0.55 before)
+  const along = (g: ElkNode) => {
+    const byWidth = (pane.width - 32) / Math.max(1, (g.width ?? 1) + 40);
+    const byHeight = (pane.height - 32) / Math.max(1, (g.height ?? 1) + 40);
+    return direction === 'DOWN' ? byHeight < byWidth : byWidth < byHeight;
+  };
+  if (fitScale(best) < readable && (folding || along(best))) {
     const other = direction === 'DOWN' ? 'RIGHT' : 'DOWN';
     const turned = await elk(graphOf(schema, { direction: other, fold: pane.width / Math.max(1, pane.height) })).catch(() => undefined);
     if (turned && fitScale(turned) > fitScale(best) * FOLD_GAIN) best = turned;

@@ -280,7 +280,7 @@ describe('Monitor: its first diagram laid out as it opens', () => {
     await s?.close();
   });
 
-  it('no layout asked of ELK twice as it opens, and the folded tries stop when folding shows no more of the schema (the tutorial\'s first schema was laid out 4 times, now 2)', async () => {
+  it('no layout asked of ELK twice as it opens, and the folded tries stop when folding shows no more of the schema (the tutorial\'s first schema was laid out 4 times, now 3 at most)', async () => {
     const { page } = s;
     await page.waitForFunction(() => performance.getEntriesByName('ide:layout-warmed').length > 0, undefined, { timeout: 20_000 });
     await page.evaluate(() => ((window as unknown as { __elkAsked: string[] }).__elkAsked = [])); // the warm-up's left out
@@ -293,12 +293,14 @@ describe('Monitor: its first diagram laid out as it opens', () => {
     // the same graph with the same options never asked twice
     expect(new Set(asked).size, asked.join('\n')).toBe(asked.length);
     // the tutorial's schemas (two or three modules whose flows go both ways) do not fold: the straight
-    // layout and one folded try, which shows hardly more, and no more tries
+    // layout and one folded try, which shows hardly more, and no more folded tries; a drawing held back
+    // by its length along the way it runs (schemaReceptionMessage left to right, too wide) is tried once
+    // the other way (top to bottom: docked at 1366 x 768, 0.78 rather than 0.55)
     const perSchema = new Map<string, number>();
     for (const a of asked) {
       const key = (JSON.parse(a) as { modules: string[] }).modules.join(',');
       perSchema.set(key, (perSchema.get(key) ?? 0) + 1);
     }
-    for (const [modules, n] of perSchema) expect(n, `${modules} (shown: ${shown})`).toBeLessThanOrEqual(2);
+    for (const [modules, n] of perSchema) expect(n, `${modules} (shown: ${shown})`).toBeLessThanOrEqual(3);
   });
 });
