@@ -525,8 +525,13 @@ static int deliver_event(SimWorld *w, const char *src, int port, const void *dat
             SimSub *sub = &p->subs[i];
             if (!sub->active || sub->src_port != port || strcmp(sub->module, src) != 0) continue;
             if (sub->mode == CONTRACT_ONESHOT) sub->active = 0; /* spent by this event */
-            record(w, p->v->name, "event_received", src, sub->in_port, "from_port=%d latency_ns=0", port);
-            sup_core_module_event(p->core, w->now, src, port, sub->in_port, data, size);
+            /* as sup_main.c writes it: once the rules have seen it, with the rule changes it made
+               and its value as a rule's cause writes it (no latency: messages take no virtual time) */
+            const int changed = sup_core_module_event(p->core, w->now, src, port, sub->in_port, data, size);
+            char value[ACTION_VALUE_MAX];
+            sup_core_format_event_value(p->core, sub->in_port, data, size, value, sizeof value);
+            record(w, p->v->name, "event_received", src, sub->in_port,
+                   "from_port=%d latency_ns=0 taken_ns=%lld rules=%d value=%s", port, (long long)w->now, changed, value);
             n++;
         }
     }

@@ -30,7 +30,8 @@ typedef struct SimSink {
     /* a typed trace record, as a real run's CSV log of `module` holds it (docs/runtime-api.md
        "Trace records"; port -1: none): ORD's ord_release / ord_finished / ord_complete /
        ord_deadline_miss, a virtual module's run_started / run_finished for each release, a
-       supervisor's event_received for each event delivered to it */
+       supervisor's event_received for each event delivered to it (once its rules have seen it,
+       with taken_ns, rules and value as sup_main.c writes them) */
     void (*record)(void *ctx, int64_t t, const char *module, const char *event, const char *peer,
                    int port, const char *detail);
 } SimSink;

@@ -59,7 +59,7 @@ describe('contract simulate', { timeout: 60_000 }, () => {
         try {
             const io = capture(dir);
             expect(await runCli(['simulate', TUTORIAL, scenario('commutation.scenario'), scenario('mission.scenario'), '--cache-dir', cache, '--trace', 'sim.jsonl', '--format', 'json'], io), io.stderr).toBe(0);
-            const records = readFileSync(join(dir, 'sim.jsonl'), 'utf8').trimEnd().split('\n').map((l) => JSON.parse(l) as { kind: string; module: string; peer: string; monoNs: string; port: number | null; detail: string; rule?: string; active?: boolean; cause?: string });
+            const records = readFileSync(join(dir, 'sim.jsonl'), 'utf8').trimEnd().split('\n').map((l) => JSON.parse(l) as { kind: string; module: string; peer: string; monoNs: string; port: number | null; detail: string; fields?: Record<string, unknown>; rule?: string; active?: boolean; cause?: string });
             // one simulation after the other, each from its sim_start at time 0 naming the scenario
             const starts = records.flatMap((r, i) => (r.kind === 'sim_start' ? [i] : []));
             expect(starts).toHaveLength(2);
@@ -82,18 +82,20 @@ describe('contract simulate', { timeout: 60_000 }, () => {
             // in time order
             const times = first.map((r) => Number(r.monoNs));
             expect(times).toEqual([...times].sort((a, b) => a - b));
-            // and at one time in the engines' order, cause before effect, as a run logs them: MAA's
-            // event taken, FIRST made inactive by it, FIRST's undos, SECOND active, SECOND's actions
+            // and at one time in the engines' order, as a run logs them: FIRST made inactive by MAA's
+            // event, FIRST's undos, SECOND active, SECOND's actions, then the event's event_received
+            // (a supervisor writes it once its rules have seen it: the rule changes it made, its value)
             const at300 = first.filter((r) => r.monoNs === '300000000');
             const where = (pred: (r: (typeof first)[number]) => boolean) => at300.findIndex(pred);
             const order = [
-                where((r) => r.kind === 'event_received' && r.module === 'SUP' && r.peer === 'MAA' && r.port === 2),
                 where((r) => r.kind === 'sup_rule' && r.rule === 'FIRST' && r.active === false),
                 where((r) => r.detail === 'undo: deactivate schema schemaReceptionMessage (event schema)'),
                 where((r) => r.kind === 'sup_rule' && r.rule === 'SECOND' && r.active === true),
                 where((r) => r.detail.startsWith('activate schema schemaCommande1(consigne = ')),
+                where((r) => r.kind === 'event_received' && r.module === 'SUP' && r.peer === 'MAA' && r.port === 2),
                 where((r) => r.kind === 'ord_release' && r.peer === 'MSA'),
             ];
+            expect(at300[order[4]!]).toMatchObject({ detail: 'from_port=2 latency_ns=0 taken_ns=300000000 rules=2 value="disconnected"', fields: { from_port: 2, rules: 2, value: '"disconnected"' } });
             expect(order.every((i) => i >= 0), JSON.stringify(order)).toBe(true);
             expect(order).toEqual([...order].sort((a, b) => a - b));
             // contract trace tells the file: each simulation's story under its own heading, every rule change of it

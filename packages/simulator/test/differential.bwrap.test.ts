@@ -13,12 +13,17 @@
  * other status the tutorial's MAA script posts); a datatype's value that changed a rule is logged field
  * by field and replayed as logged; one that changed none (the tutorial's rules test none of them)
  * takes the type's default.
+ *
+ * And the records both sides write have the same fields (differential/record-shapes.ts): per kind
+ * and writer, the simulation writes no field list a real run does not, and no field one does not
+ * have (a supervisor's event_received with its taken_ns, rules and value, as sup_main.c writes it).
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { renderStory, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import type { ScenarioResult } from '../src/index.js';
 import { stepsToTrace, traceStepOf } from '../src/trace/steps-to-trace.js';
 import { TUTORIAL } from './support.js';
+import { commonGroups, recordShapes, shapeDifferences } from './differential/record-shapes.js';
 import { firstDifference, realDecisions, replayInSimulator, runForReal, simulatedDecisions, TUTORIAL_PLAN, type RealRun } from './differential/replay-run.js';
 
 const SUPERVISORS = TUTORIAL_PLAN.supervisors;
@@ -26,6 +31,13 @@ let run: RealRun;
 
 /** The story's `run #N ended by its own code (started by X)` lines, without their times. */
 const ownRunEnds = (records: TraceRecord[]): string[] => renderStory(records).filter((l) => l.includes(' ended by its own code ')).map((l) => l.slice(11));
+
+/** The run's records before the launcher's stop (what the simulation, which has no launcher, covers). */
+function beforeLaunchersStop(records: TraceRecord[]): KnownRecord[] {
+    const known = records.filter((r): r is KnownRecord => r.kind !== 'unknown');
+    const stop = known.find((r) => r.kind === 'request_received' && r.peer === 'contract-launch' && /^(STOP|KILL)/.test(r.detail));
+    return known.filter((r) => !stop || BigInt(r.monoNs) < BigInt(stop.monoNs));
+}
 
 beforeAll(() => {
     run = runForReal(TUTORIAL, '5s');
@@ -64,12 +76,19 @@ describe('simulator vs a real bwrap run of the tutorial', () => {
 
     it('the runs their own code ended (MAB at once; MAA when it won the race) end in the simulation too', () => {
         expect(finished).toContain('MAB');
-        const known = run.records.filter((r): r is KnownRecord => r.kind !== 'unknown');
-        const stop = known.find((r) => r.kind === 'request_received' && r.peer === 'contract-launch' && /^(STOP|KILL)/.test(r.detail));
-        const beforeStop = known.filter((r) => !stop || BigInt(r.monoNs) < BigInt(stop.monoNs));
-        const want = ownRunEnds(beforeStop);
+        const want = ownRunEnds(beforeLaunchersStop(run.records));
         expect(want).toContain('MAB  run #1 ended by its own code (started by SUP)');
         expect(ownRunEnds(stepsToTrace(sim.steps.map(traceStepOf))), text).toEqual(want);
         expect(sim.failures.map((f) => f.message), text).toEqual([]);
+    });
+
+    it('the records of each kind both write carry the same fields in the same order (a supervisor\'s event_received: taken_ns, rules, value)', () => {
+        const real = recordShapes(beforeLaunchersStop(run.records), SUPERVISORS);
+        const simulated = recordShapes(stepsToTrace(sim.steps.map(traceStepOf)), SUPERVISORS);
+        const compared = commonGroups(real, simulated);
+        const shown = `compared: ${compared.join(', ')}\nreal: ${JSON.stringify([...real].map(([g, s]) => [g, [...s]]))}\nsimulated: ${JSON.stringify([...simulated].map(([g, s]) => [g, [...s]]))}`;
+        expect(compared, shown).toEqual(expect.arrayContaining(['event_received by supervisor', 'run_started by module', 'run_finished by module', 'ord_release by ORD', 'module_hold by supervisor', 'sup_rule by supervisor']));
+        expect(shapeDifferences(real, simulated), shown).toEqual([]);
+        expect([...simulated.get('event_received by supervisor')!]).toEqual(['from_port latency_ns taken_ns rules value port peer']);
     });
 });

@@ -68,25 +68,28 @@ describe('stepsToTrace: a supervisor\'s actions as a run logs them', () => {
     it('writes each action record in the run\'s words, then the hold record a run writes after it', () => {
         expect(supervisorSide(trace).map(row)).toEqual([
             'supervisor MIS  activate schema groundLink(channel = 2) (event schema)',
-            'supervisor MIS  parameterize GCS:0 link (8 bytes) = 2',
-            'supervisor MIS  connect GCS:0 =* REC:0',
+            'supervisor MIS GCS parameterize GCS:0 link (8 bytes) = 2',
+            'supervisor MIS GCS connect GCS:0 =* REC:0',
             'flow_hold MIS flow-GCS-0-REC-0 hold taken',
-            'supervisor MIS  start module GCS (priority 30)',
+            'supervisor MIS GCS start module GCS (priority 30)',
             'module_hold MIS GCS hold taken (started it)',
-            'supervisor MIS  start module REC (priority 30)',
+            'supervisor MIS REC start module REC (priority 30)',
             'module_hold MIS REC hold taken (started it)',
-            'supervisor MIS  set priority of NAV to 84 (claim #3)',
-            'supervisor MIS  undo: release priority claim #3 on NAV',
+            'supervisor MIS NAV set priority of NAV to 84 (claim #3)',
+            'supervisor MIS NAV undo: release priority claim #3 on NAV',
             'supervisor MIS  undo: deactivate schema groundLink (event schema)',
-            'supervisor MIS  undo: disconnect GCS:0 =* REC:0',
+            'supervisor MIS GCS undo: disconnect GCS:0 =* REC:0',
             'flow_hold MIS flow-GCS-0-REC-0 last hold dropped (disconnected)',
-            'supervisor MIS  undo: stop module GCS',
+            'supervisor MIS GCS undo: stop module GCS',
             'module_hold MIS GCS last hold dropped (stopped)',
-            'supervisor MIS  undo: stop module REC',
+            'supervisor MIS REC undo: stop module REC',
             'module_hold MIS REC last hold dropped (stopped)',
             // a module the simulation made crash is not started: no hold (a run's start that cannot be sent takes none)
-            'supervisor MIS  start module CAM (priority 30): it has crashed, it does not start',
+            'supervisor MIS CAM start module CAM (priority 30): it has crashed, it does not start',
         ]);
+        // each with the peer a run's log gives it (the module, or none for an event schema's own line)
+        const runRows = parseTrace([{ name: 'MIS_1.csv', text: RUN_LOG }]).filter((r) => r.kind === 'supervisor').map(row);
+        expect(supervisorSide(trace).filter((r) => r.kind === 'supervisor').map(row).slice(0, runRows.length)).toEqual(runRows);
         // typed by the trace reader, as a run's records are; the claim's module_priority as before
         const start = trace.find((r) => (r as KnownRecord).detail === 'start module GCS (priority 30)') as KnownRecord;
         expect(start.fields).toEqual({ what: 'action', action: 'start_module', module: 'GCS', priority: 30 });
@@ -123,10 +126,11 @@ describe('stepsToTrace: a supervisor\'s actions as a run logs them', () => {
             { timeNs: 2_000_000, source: 'y', ok: true, rules: [], log: [], records: [], actions: ord(2_000_000, 'disconnect ALT:0 -> CTL:0', 'ORD:0 "altHold" (deadline miss)') },
         ];
         const sim = stepsToTrace(steps).filter((r) => r.kind === 'scheduler');
+        // the peer a run's ORD writes: the module (a flow's source)
         expect(sim.map((r) => [row(r), (r as KnownRecord).fields['what']])).toEqual([
-            ['scheduler ORD  parameterize CTL:0 setpoint (8 bytes) = 3', 'parameterize'],
-            ['scheduler ORD  connect ALT:0 -> CTL:0 * 1', 'connect'],
-            ['scheduler ORD  disconnect ALT:0 -> CTL:0', 'disconnect'],
+            ['scheduler ORD CTL parameterize CTL:0 setpoint (8 bytes) = 3', 'parameterize'],
+            ['scheduler ORD ALT connect ALT:0 -> CTL:0 * 1', 'connect'],
+            ['scheduler ORD ALT disconnect ALT:0 -> CTL:0', 'disconnect'],
         ]);
         const runLog = ['mono_ns,wall_time,module,event,peer,port,size,detail',
             '1000000,w,ORD,scheduler,CTL,,0,parameterize CTL:0 setpoint (8 bytes) = 3', '1000000,w,ORD,scheduler,ALT,,0,connect ALT:0 -> CTL:0 * 1',

@@ -125,6 +125,9 @@ void test_sim_report_story_records(void) {
     HAS(record(out, 8), "release MSB (schemaCommande2)");
     /* the typed records of the same facts, as a real run's CSV logs hold them */
     HAS(record(out, 2), "{\"timeNs\":300000000,\"module\":\"SUP\",\"kind\":\"event_received\",\"peer\":\"MAA\",\"port\":");
+    /* as sup_main.c writes it: when the engine took it, the rule changes it made (FIRST inactive,
+       SECOND active) and its value as the rules' causes write it */
+    HAS(record(out, 2), "\"kind\":\"event_received\",\"peer\":\"MAA\",\"port\":2,\"detail\":\"from_port=2 latency_ns=0 taken_ns=300000000 rules=2 value=\\\"disconnected\\\"\"");
     HAS(record(out, 5), "\"module\":\"ORD\",\"kind\":\"ord_release\",\"peer\":\"MSB\",\"detail\":\"schema=schemaCommande2 cycle=0 tick_ns=1000000000 release_ns=1000000000 release=");
     HAS(record(out, 5), "\"module\":\"MSB\",\"kind\":\"run_started\",\"peer\":\"ORD\",\"detail\":\"activation=1\"");
     HAS(record(out, 8), "\"module\":\"ORD\",\"kind\":\"ord_release\",\"peer\":\"MSB\",\"detail\":\"schema=schemaCommande2 cycle=3 tick_ns=4000000000 release_ns=4000000000 release=");
@@ -138,14 +141,15 @@ void test_sim_report_story_records(void) {
     HAS(record(out, 2), "\"kind\":\"module_hold\",\"peer\":\"MAB\",\"detail\":\"last hold dropped (stopped)\"");
     const char *r1 = raw_record(out, 1);
     CHECK(seq_of(r1, "\"what\":\"start module MAA") < seq_of(r1, "\"peer\":\"MAA\",\"detail\":\"hold taken (started it)\""));
-    /* the four lists in one order (seq): at 300 ms MAA's event taken, FIRST inactive, its undo,
-       SECOND active, its activation of schemaCommande1, ORD's release of MSA */
+    /* the four lists in one order (seq): at 300 ms FIRST inactive, its undo, SECOND active, its
+       activation of schemaCommande1, then MAA's event_received (written once the rules have seen
+       it, as sup_main.c writes it), ORD's release of MSA */
     const char *r2 = raw_record(out, 2);
-    long order[] = {seq_of(r2, "\"kind\":\"event_received\",\"peer\":\"MAA\""),
-                    seq_of(r2, "\"rule\":\"FIRST\",\"active\":false"),
+    long order[] = {seq_of(r2, "\"rule\":\"FIRST\",\"active\":false"),
                     seq_of(r2, "\"what\":\"undo: deactivate schema schemaReceptionMessage"),
                     seq_of(r2, "\"rule\":\"SECOND\",\"active\":true"),
                     seq_of(r2, "\"what\":\"activate schema schemaCommande1"),
+                    seq_of(r2, "\"kind\":\"event_received\",\"peer\":\"MAA\""),
                     seq_of(r2, "\"kind\":\"ord_release\",\"peer\":\"MSA\"")};
     for (size_t i = 0; i < sizeof order / sizeof order[0]; i++) {
         CHECK(order[i] >= 0);

@@ -10,7 +10,8 @@
  *   them (read by the trace reader, parseRecordLine: `function F started`, `activate S`, `overrun: …`),
  *   and ORD's `release M (S)` → `ord_release` records (the cycle counted from 0 at each activation);
  * - `actions`: what the engines did → a supervisor's `supervisor` action record, in the words a
- *   run's log holds (actionAsLogged), each typed by the trace reader; then, as a run writes them, the
+ *   run's log holds (actionAsLogged), each typed by the trace reader, with the peer a run writes
+ *   (actionPeer: the module, supervisor or ORD it goes to); then, as a run writes them, the
  *   hold it takes or drops, when the harness does not write its holds itself (an older one: `start
  *   module M` → `module_hold` `hold taken (started it)`, `undo: stop module M` → `last hold dropped
  *   (stopped)`, `connect A:p =* B:i` / `undo: disconnect …` → `flow_hold` `hold taken` / `last hold
@@ -19,16 +20,18 @@
  *   claim's `module_priority`, and before an `activate schema` its START request to ORD
  *   (`request_received`: which rule activated a schema); ORD's `ORD:0 "S" (deadline miss)` →
  *   `ord_deadline_miss`; ORD's `parameterize …`, `connect A:p -> B:i * k`, `disconnect …` → the
- *   `scheduler` records a run's ORD writes; a crash → `module_exit`.
+ *   `scheduler` records a run's ORD writes (peer: the module; a flow's source); a crash → `module_exit`.
  * - `records`: the typed records the harness writes as a real run's CSV logs hold them (ORD's
  *   ord_release / ord_finished / ord_complete / ord_deadline_miss with their cycle and response
  *   times, each virtual module's run_started / run_finished and data_posted on each connected data
- *   flow, each event_received of a supervisor)
+ *   flow, each event_received of a supervisor, with its taken_ns, rules and value as sup_main.c
+ *   writes it: after the rule changes it made)
  *   → read by the trace reader as a CSV line. Without them (an older server), ORD's `release M (S)`
  *   lines and `ORD:0` actions stand for the releases and misses, cycles counted here.
  * The records are in time order and, at one virtual time, in the harness's order (each entry's `seq`):
- * ORD's deadline miss comes before the rule it made inactive, a module's notification before the
- * supervisor's `event_received` (an older server's answer, without seq: as listed above).
+ * ORD's deadline miss comes before the rule it made inactive, a supervisor's `event_received` after
+ * the rule changes and actions its event made, as a run's log holds them (an older server's answer,
+ * without seq: as listed above).
  * Without `log` (an older server), functions come from start/stop steps and `activate supervisor` /
  * `stop SUP.f` actions, and the schemas from each step's list of active schemas.
  * Not simulated, so not in the trace: data_received (virtual modules read no data) and the values posted.
@@ -107,12 +110,32 @@ export function actionAsLogged(what: string): string {
     return UNDO.test(what) ? `undo: ${what}` : what;
 }
 
+/**
+ * The peer a run's engine writes with an action's record (sup_main.c log_action, ord_main.c
+ * b_set_param / b_connect / b_disconnect): the module it goes to (a flow's: its source module), the
+ * supervisor of an `activate supervisor` or its `stop SUP.f`, ORD for an `activate schema …
+ * (activation #N, to ORD)` and its undo; none for a notification or an event schema's own lines.
+ */
+export function actionPeer(fields: Readonly<Record<string, string | number>>, line: string): string {
+    const module = fields['module'], supervisor = fields['supervisor'];
+    if (typeof module === 'string' && module) return module;
+    if (typeof supervisor === 'string' && supervisor) return supervisor;
+    return /, to ORD\)$/.test(line) ? 'ORD' : '';
+}
+
+/** An engine's action line as the record a run writes: typed by the trace reader, with the peer it goes to. */
+function withActionPeer(rec: TraceRecord, line: string): TraceRecord {
+    if (rec.kind === 'unknown') return rec;
+    const k = rec as KnownRecord;
+    return { ...k, peer: actionPeer(k.fields ?? {}, line) };
+}
+
 /** A supervisor's action as the `supervisor` record a run writes, typed by the trace reader (a line it does not know, the simulator's own: an action all the same). */
 function actionRecord(timeNs: number, who: string, what: string): TraceRecord {
     const line = actionAsLogged(what);
     const rec = engineLine(timeNs, who, 'supervisor', line);
     if (rec.kind === 'unknown') return known(timeNs, who, 'supervisor', line, { what: 'action' });
-    const k = rec as KnownRecord;
+    const k = withActionPeer(rec, line) as KnownRecord;
     return k.fields['what'] === 'action' ? k : { ...k, fields: { what: 'action' } };
 }
 
@@ -188,7 +211,7 @@ export function stepsToTrace(steps: TraceStep[], scenario?: string): TraceRecord
                 }
                 // ORD's parameters and data flows at an activation: the `scheduler` records a run's ORD writes (same words)
                 const rec = engineLine(t, 'ORD', 'scheduler', a.what);
-                if (rec.kind !== 'unknown' && (rec as KnownRecord).fields?.['what'] !== 'other') push(rec);
+                if (rec.kind !== 'unknown' && (rec as KnownRecord).fields?.['what'] !== 'other') push(withActionPeer(rec, a.what));
                 continue;
             }
             if (a.who === 'sim') continue;
