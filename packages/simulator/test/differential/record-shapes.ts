@@ -30,7 +30,7 @@ export function recordShapes(records: readonly TraceRecord[], supervisors: Reado
     };
     for (const r of records) {
         if (r.kind === 'unknown') continue;
-        const by = writer(r.module, supervisors);
+        const by = writer((r as KnownRecord).module, supervisors);
         if (isRule(r)) {
             const { kind, ...cause } = r.causeEvent;
             add(`sup_rule by ${by}`, [`cause:${kind}`, ...Object.keys(cause)].join(' '));
