@@ -51,7 +51,7 @@ export async function startSession(opts: {
   const browser = context.browser() as Browser;
   const page = context.pages()[0] ?? (await context.newPage());
   page.on('pageerror', (e) => console.error('[page error]', e.message));
-  return {
+  const session: Session = {
     workspace, server, browser, page, userDataDir,
     async close() {
       await context.close().catch(() => undefined);
@@ -59,6 +59,7 @@ export async function startSession(opts: {
       rmSync(base, { recursive: true, force: true });
     },
   };
+  return session;
 }
 
 export async function openIde(s: Session): Promise<number> {

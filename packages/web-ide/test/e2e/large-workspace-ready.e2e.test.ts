@@ -9,7 +9,6 @@
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { startSession, shot, type Session } from './harness.js';
-// @ts-expect-error the bench's generator is plain JavaScript beside its .d.ts
 import { writeSyntheticArchitecture } from '../../../language/bench/synthetic-architecture.js';
 
 let s: Session;

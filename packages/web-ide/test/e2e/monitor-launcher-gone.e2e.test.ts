@@ -92,7 +92,7 @@ describe.skipIf(!canBuild)('a module SIGKILLed mid-run, followed live', () => {
     await expect.poll(() => jobOption.count(), { timeout: 30_000 }).toBe(1);
     await page.locator('.monitor-sources').selectOption(await jobOption.getAttribute('value'));
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 }).toMatch(/· CSV logs/);
-    const replayed = () => page.evaluate((m) => {
+    const replayed = () => page.evaluate((m): { gone: string | undefined; marks: Array<{ t: number; where: string }>; end: number | undefined } => {
       const run = (window as any).__ide.monitor.current;
       return { gone: run?.stateAt(run.end)?.modules?.get(m)?.gone, marks: (run?.marks ?? []).filter((k: { kind: string }) => k.kind === 'crash').map((k: { t: number; where: string }) => ({ t: k.t, where: k.where })), end: run?.end };
     }, MODULE);
@@ -101,6 +101,7 @@ describe.skipIf(!canBuild)('a module SIGKILLed mid-run, followed live', () => {
     expect(replayMarks.map((k) => k.where)).toEqual([MODULE]);
     // a second or so into the run (the kill came then), well before its end
     expect(replayMarks[0]!.t).toBeGreaterThan(0);
-    expect(replayMarks[0]!.t).toBeLessThan(end - 5e9);
+    expect(end).toBeTypeOf('number');
+    expect(replayMarks[0]!.t).toBeLessThan(end! - 5e9);
   }, 300_000);
 });

@@ -48,7 +48,7 @@ describe('.scenario files in the IDE (headless Chromium)', () => {
     const types = await page.evaluate(() => (window as any).__ide.monaco.editor
       .tokenize('t=300ms MAA:2 "x"  # why', 'cactal-scenario')[0].map((t: { type: string }) => t.type.replace('.cactal-scenario', '')));
     expect(types).toEqual(['keyword', 'number.time', '', 'type.identifier.module', 'number.port', '', 'string', '', 'comment']);
-    const line = (text: string) => page.evaluate((t) => (window as any).__ide.monaco.editor.tokenize(t, 'cactal-scenario')[0]
+    const line = (text: string) => page.evaluate((t): Array<[string, string]> => (window as any).__ide.monaco.editor.tokenize(t, 'cactal-scenario')[0]
       .map((x: { offset: number; type: string }, i: number, all: Array<{ offset: number }>) => [t.slice(x.offset, all[i + 1]?.offset ?? t.length), x.type.replace('.cactal-scenario', '')]), text);
     expect(await line('scenario the title # note')).toEqual([['scenario', 'keyword'], [' the title ', 'string'], ['# note', 'comment']]);
     expect((await line('expect rule SUP.action.FIRST active')).filter(([, t]) => t === 'keyword' || t === 'constant'))

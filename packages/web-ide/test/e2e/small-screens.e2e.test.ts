@@ -181,7 +181,7 @@ describe('a 1366x768 laptop at 150 % (911x512 at scale 1.5, reduce motion)', () 
     // the replay may still be adding rows on a loaded machine: wait until their number holds for half a second,
     // then focus and measure one and the same element (a locator's .last() would resolve again)
     let rows = -1;
-    await expect.poll(async () => { const n = await page.locator('.monitor-rule').count(); const same = n === rows; rows = n; return same; }, { timeout: 15_000, intervals: [500] }).toBe(true);
+    await expect.poll(async () => { const n = await page.locator('.monitor-rule').count(); const same = n === rows; rows = n; return same; }, { timeout: 15_000, interval: 500 }).toBe(true);
     const last = await page.locator('.monitor-rule').last().elementHandle();
     await last!.focus();
     const r = await last!.evaluate((e) => e.getBoundingClientRect().toJSON() as DOMRect);
