@@ -74,8 +74,10 @@ export function registerCactalLanguage(): void {
 
 /**
  * The IDE's dark theme. Its text colours keep a contrast of 4.5:1 or more (WCAG AA) on the editor,
- * the current line and the highlights of the word at the cursor; the line numbers too (axe-core
- * scans the editor with a file open: test/e2e/small-screens.e2e.test.ts).
+ * the current line, the selection and the highlights of the word at the cursor; the line numbers
+ * too (axe-core scans the editor with a file open: test/e2e/small-screens.e2e.test.ts; the
+ * selection is measured in test/e2e/editor-colours.e2e.test.ts). The skeleton of a generated file
+ * is greyed by one colour that keeps 4.5:1 on all of them (styles.css, `.gen-readonly-text`).
  */
 export function defineStudioTheme(): void {
   monaco.editor.defineTheme('contract-dark', {
@@ -107,13 +109,20 @@ export function defineStudioTheme(): void {
       'editorGutter.background': '#15181e',
       'editorLineNumber.foreground': '#828998',
       'editorLineNumber.activeForeground': '#abb2bf',
-      'editor.selectionBackground': '#2c3b5a',
+      // the selected text: every token colour keeps 4.5:1 on it (#2c3b5a left keywords at 4.0:1); a
+      // saturated blue as dark as the highlights below, told from them by its hue, 1.4:1 on the editor
+      'editor.selectionBackground': '#113163',
       // the other places of the word at the cursor, and of the selected text: every token colour
       // keeps 4.5:1 on them (vs-dark's translucent grey, #454547 over the editor, left keywords at 3.4:1)
       'editor.wordHighlightBackground': '#283246',
       'editor.wordHighlightStrongBackground': '#283246',
       'editor.selectionHighlightBackground': '#283246',
       'editor.inactiveSelectionBackground': '#283246',
+      // the brackets coloured by pair: vs-dark's orchid (#da70d6) and blue (#179fff) were at 4.4:1
+      // and 4.5:1 on the selection and the highlights
+      'editorBracketHighlight.foreground1': '#ffd700',
+      'editorBracketHighlight.foreground2': '#e07fdc',
+      'editorBracketHighlight.foreground3': '#3aa8ff',
       'editorWidget.background': '#1b1f27',
       'editorSuggestWidget.background': '#1b1f27',
       'editorHoverWidget.background': '#1b1f27',
