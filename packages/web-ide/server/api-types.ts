@@ -15,6 +15,26 @@ export interface SharedJob {
   project: string;
 }
 
+/** A generated file whose protected regions hold user code (GET /api/user-code, /api/folder-contents). */
+export interface HeldUserCode {
+  /** Workspace-relative. */
+  path: string;
+  /** Its regions holding code (recorded first, as a build records them). */
+  regions: string[];
+  /** Whether the next generation restores them if the file is deleted (from its tree's copy of that code). */
+  restorable: boolean;
+}
+
+/** GET /api/folder-contents?path=F: what deleting folder F deletes (its delete confirmation). */
+export interface FolderContents {
+  /** The files in it, as the Explorer lists them (links left out). */
+  files: number;
+  /** The listing stopped at its bounds (file-tree.ts): at least `files`. */
+  cut: boolean;
+  /** Its generated files holding user code in protected regions, in path order. */
+  userCode: HeldUserCode[];
+}
+
 export interface TreeEntry {
   name: string;
   /** Workspace-relative path with '/' separators. */

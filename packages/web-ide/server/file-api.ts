@@ -2,7 +2,7 @@ import type { IncomingMessage, ServerResponse } from 'node:http';
 import { constants } from 'node:fs';
 import { mkdir, open, rename } from 'node:fs/promises';
 import { WorkspacePaths } from './workspace-paths.js';
-import { listTree } from './file-tree.js';
+import { flattenFiles, listFolder, listTree, listingCut } from './file-tree.js';
 import { HttpError } from './http-error.js';
 import { readBodyBytes, readJson, sendJson } from './http-util.js';
 import { saveWorkspaceFile } from './guarded-write.js';
@@ -11,7 +11,8 @@ import { WorkspaceFs } from './workspace-fs.js';
 import { FileLocks } from './file-locks.js';
 import { baseVersionOf, fileVersion } from './file-version.js';
 import { undecodableLine } from './undecodable.js';
-import { generatedUserCode } from './generated-files.js';
+import { generatedUserCode, userCodeInFolder } from './generated-files.js';
+import type { FolderContents } from './api-types.js';
 
 /** A workspace file the editor opens, saves or creates: 8 MiB at most (GET and PUT /api/file, POST /api/create). */
 const MAX_FILE_BYTES = 8 * 1024 * 1024;
@@ -36,6 +37,8 @@ const { O_WRONLY, O_CREAT, O_EXCL, O_NOFOLLOW } = constants;
  *   DELETE /api/file?path=P               -> {path}            (files and folders)
  *   GET    /api/user-code?path=P          -> {regions, restorable}   a generated file's protected regions holding user code
  *          (recorded first, as a build records them), and whether the next generation restores them if it is deleted
+ *   GET    /api/folder-contents?path=F    -> {files, cut, userCode}   what deleting folder F deletes: how many files
+ *          (as the tree lists them; `cut`: at its bounds) and its generated files holding user code, as /api/user-code says them
  * Returns false when the request is not for this API.
  */
 export async function handleFileApi(
@@ -116,6 +119,17 @@ export async function handleFileApi(
     case 'GET /api/user-code': {
       const rel = paths.entry(url.searchParams.get('path'));
       sendJson(res, 200, await treeLock.run(() => generatedUserCode(paths.root, rel)));
+      return true;
+    }
+    case 'GET /api/folder-contents': {
+      const rel = paths.entry(url.searchParams.get('path'));
+      const kind = await fs.withParent(rel, false, (dir, name) => WorkspaceFs.entry(dir, name));
+      if (!kind) throw new HttpError(404, `not found: ${rel}`);
+      if (!kind.isDirectory()) throw new HttpError(400, `not a folder: ${rel}`);
+      const entries = await listFolder(fs, rel);
+      const files = flattenFiles(entries);
+      const contents: FolderContents = { files: files.length, cut: listingCut(entries), userCode: await treeLock.run(() => userCodeInFolder(paths.root, rel, files)) };
+      sendJson(res, 200, contents);
       return true;
     }
     case 'DELETE /api/file': {

@@ -31,6 +31,21 @@ export async function listTree(fs: WorkspaceFs): Promise<TreeEntry[]> {
   return fs.withDir([], false, async (root) => (await listDir(root, '', 1, budget)).entries);
 }
 
+/**
+ * Lists folder `rel` of the workspace as listTree lists the workspace (same bounds, links not
+ * followed): what deleting it deletes, as the Explorer shows it.
+ */
+export async function listFolder(fs: WorkspaceFs, rel: string): Promise<TreeEntry[]> {
+  const budget = { entries: TREE_MAX_ENTRIES };
+  const parts = rel.split('/').filter(Boolean);
+  return fs.withDir(parts, false, async (dir) => (await listDir(dir, parts.join('/'), parts.length + 1, budget)).entries);
+}
+
+/** Whether a listing was cut by its bounds somewhere (a folder listed `truncated`). */
+export function listingCut(entries: TreeEntry[]): boolean {
+  return entries.some((e) => e.type === 'dir' && (e.truncated === true || listingCut(e.children ?? [])));
+}
+
 async function listDir(dir: DirAt, relDir: string, depth: number, budget: { entries: number }): Promise<{ entries: TreeEntry[]; cut: boolean }> {
   // in name order (the listing is the same whatever order the file system gives): files first, then folders
   const dirents = (await WorkspaceFs.list(dir)).filter((d) => !SKIPPED.has(d.name) && !isAtomicTempFile(d.name) && (d.isDirectory() || d.isFile()))

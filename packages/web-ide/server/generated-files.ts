@@ -1,6 +1,7 @@
 import { join } from 'node:path';
 import { importWith, loadTreeChecks, type CodegenApi } from './integrations.js';
 import { SRC_GEN_DIR } from '@contract-studio/conventions';
+import type { HeldUserCode } from './api-types.js';
 
 const GENERATED_PATH = new RegExp(`^(?:(.*)/)?${SRC_GEN_DIR}/(generated/.+)$`);
 
@@ -37,6 +38,33 @@ export async function generatedUserCode(root: string, relPath: string): Promise<
   if (!parts) return { regions: [], restorable: false };
   const codegen = await importWith<CodegenApi, 'userCodeOf'>('@contract-studio/codegen', ['userCodeOf']);
   return codegen.userCodeOf(join(root, ...parts.srcGen.split('/')), parts.inTree);
+}
+
+/**
+ * The files of `files` (workspace-relative, all in folder `folder`, which is being deleted) that
+ * are generated files holding user code, each tree's code recorded once. A tree whose src-gen
+ * folder is deleted with them takes its copy of that code (`.contract-regions.json`) along: none
+ * of its files is restorable then.
+ */
+export async function userCodeInFolder(root: string, folder: string, files: readonly string[]): Promise<HeldUserCode[]> {
+  const byTree = new Map<string, string[]>();
+  for (const file of files) {
+    const parts = splitGeneratedPath(file);
+    if (!parts) continue;
+    const inTree = byTree.get(parts.srcGen) ?? [];
+    inTree.push(parts.inTree);
+    byTree.set(parts.srcGen, inTree);
+  }
+  if (byTree.size === 0) return [];
+  const codegen = await importWith<CodegenApi, 'userCodeOfFiles'>('@contract-studio/codegen', ['userCodeOfFiles']);
+  const held: HeldUserCode[] = [];
+  for (const [srcGen, inTree] of byTree) {
+    const copyDeleted = srcGen === folder || srcGen.startsWith(`${folder}/`);
+    for (const [path, code] of codegen.userCodeOfFiles(join(root, ...srcGen.split('/')), inTree)) {
+      held.push({ path: `${srcGen}/${path}`, regions: code.regions, restorable: code.restorable && !copyDeleted });
+    }
+  }
+  return held.sort((a, b) => (a.path < b.path ? -1 : a.path > b.path ? 1 : 0));
 }
 
 /**

@@ -1,5 +1,5 @@
 /** Typed client of the IDE server's HTTP API (see server/file-api.ts and server/ide-server.ts). */
-import type { FileReadResponse, FileWriteResponse, GenerateResponse, LogFolderListing, RenameEntityResponse, SimulateResponse, StaleSaveDetails, TreeEntry } from '../server/api-types.js';
+import type { FileReadResponse, FolderContents, FileWriteResponse, GenerateResponse, LogFolderListing, RenameEntityResponse, SimulateResponse, StaleSaveDetails, TreeEntry } from '../server/api-types.js';
 
 export type { TreeEntry, FileWriteResponse, FileReadResponse, StaleSaveDetails };
 /** What POST /api/generate answers: codegen's report, the src-gen folder and the time taken. */
@@ -201,6 +201,8 @@ export const api = {
   remove: (path: string) => call<{ path: string }>('DELETE', `/api/file?path=${q(path)}`),
   /** A generated file's protected regions holding user code, and whether the next generation restores them if it is deleted. */
   userCode: (path: string) => call<{ regions: string[]; restorable: boolean }>('GET', `/api/user-code?path=${q(path)}`),
+  /** What deleting a folder deletes: how many files, and its generated files holding user code (docs/ide.md "Deleting a folder"). */
+  folderContents: (path: string) => call<FolderContents>('GET', `/api/folder-contents?path=${q(path)}`),
   newProject: (folder: string) => call<{ folder: string; files: string[] }>('POST', '/api/new-project', { folder }),
   generate: (project: string) => call<GenerateReport>('POST', '/api/generate', { project }),
   renameEntity: (project: string, from: string, to: string, what: { kind?: string; owner?: string; members?: string[]; files?: Array<{ path: string; text: string; base: string }> } = {}) =>

@@ -22,4 +22,4 @@ export {
 export { carryRenameIntoTree, type TreeRename, type TreeCarryOver } from './carry-rename.js';
 export { runJournaledRename, RenameStepError, type RenameStep, type JournaledRenameOptions } from './journaled-rename.js';
 export { REGION_COPY_NAME, loadRegionCopy, type RegionBodies } from './region-copy.js';
-export { recordUserCode, userCodeOf, type UserCodeRecord } from './record-user-code.js';
+export { recordUserCode, userCodeOf, userCodeOfFiles, type UserCodeOfFile, type UserCodeRecord } from './record-user-code.js';

@@ -96,27 +96,50 @@ function recordChanged(oldHeld: ReadonlyMap<string, string[]>, held: ReadonlyMap
     return !recorded || !sameLists(oldHeld, held) || !sameLists(oldLost, lost);
 }
 
+/** What the IDE's delete confirmation says of one generated file. */
+export interface UserCodeOfFile {
+    /** Its protected regions holding user code, as recorded. */
+    regions: string[];
+    /** Whether the copy holds them all: a generation brings them back when the file is deleted. */
+    restorable: boolean;
+}
+
 /**
  * The regions of generated file `path` (relative to the tree `outDir`) that hold user code, once
  * recorded (recordUserCode), and whether the copy holds them all (`restorable`: a generation
  * brings them back when the file is deleted): what the IDE's delete confirmation says.
  */
-export function userCodeOf(outDir: string, path: string): { regions: string[]; restorable: boolean } {
+export function userCodeOf(outDir: string, path: string): UserCodeOfFile {
+    return userCodeOfFiles(outDir, [path]).get(path) ?? { regions: [], restorable: false };
+}
+
+/**
+ * userCodeOf for several files of one tree (the files of a folder the IDE deletes), the tree's
+ * user code recorded once: each of `paths` whose regions hold code, with its regions and whether
+ * the copy holds them all; the others are left out.
+ */
+export function userCodeOfFiles(outDir: string, paths: readonly string[]): Map<string, UserCodeOfFile> {
+    const held = new Map<string, UserCodeOfFile>();
     recordUserCode(outDir);
     try {
-        if (!lstatSync(outDir).isDirectory()) return { regions: [], restorable: false };
+        if (!lstatSync(outDir).isDirectory()) return held;
     } catch {
-        return { regions: [], restorable: false };
+        return held;
     }
     const tree = new OutputTree(outDir);
     try {
         const manifest = loadManifest(tree).manifest;
-        const regions = manifest?.userCode.get(path) ?? [];
-        if (!manifest || regions.length === 0) return { regions, restorable: false };
-        const saved = loadRegionCopy(tree, new Set(manifest.files.keys())).bodies.get(path);
-        return { regions, restorable: regions.every((id) => saved?.has(id)) };
+        if (!manifest) return held;
+        const bodies = loadRegionCopy(tree, new Set(manifest.files.keys())).bodies;
+        for (const path of paths) {
+            const regions = manifest.userCode.get(path) ?? [];
+            if (regions.length === 0) continue;
+            const saved = bodies.get(path);
+            held.set(path, { regions, restorable: regions.every((id) => saved?.has(id)) });
+        }
+        return held;
     } catch {
-        return { regions: [], restorable: false };
+        return new Map();
     } finally {
         tree.close();
     }

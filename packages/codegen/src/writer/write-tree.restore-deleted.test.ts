@@ -11,7 +11,7 @@ import { describe, expect, it } from 'vitest';
 import { region } from '../regions/markers.js';
 import { scratchDirs } from '../test-support/temp-dir.js';
 import { MANIFEST_NAME } from './manifest.js';
-import { recordUserCode } from './record-user-code.js';
+import { recordUserCode, userCodeOf, userCodeOfFiles } from './record-user-code.js';
 import { MAX_COPY_BYTES, REGION_COPY_NAME } from './region-copy.js';
 import { renameInGeneratedTree } from './rename-generated.js';
 import { writeTree, type GeneratedFile } from './write-tree.js';
@@ -165,5 +165,20 @@ describe('the copy missing, corrupt or hostile: nothing restored from it, the de
         const r = writeTree(dir, tree());
         expect(read(dir, NAV)).toBe(module('NAV').content);
         expect(r.warnings.filter((w) => w.file === NAV)).toEqual([]);
+    });
+});
+
+describe('userCodeOfFiles: what the IDE\'s delete of a folder says of its generated files', () => {
+    it('the files holding code, each with its regions, restorable once recorded; files without code left out; one record for all', () => {
+        const dir = out();
+        writeTree(dir, tree());
+        writeExec(dir, 'lab_code();');
+        const LOC = 'generated/architecture/modules/LOC_mod/module.c';
+        const held = userCodeOfFiles(dir, [LOC, NAV, 'generated/not/there.c']);
+        expect([...held]).toEqual([[NAV, { regions: ['protect_exec_NAV'], restorable: true }]]);
+        expect(userCodeOf(dir, NAV)).toEqual({ regions: ['protect_exec_NAV'], restorable: true });
+        expect(userCodeOf(dir, LOC)).toEqual({ regions: [], restorable: false });
+        // no tree there: nothing
+        expect(userCodeOfFiles(join(dir, 'missing'), [NAV]).size).toBe(0);
     });
 });

@@ -9,7 +9,7 @@ import { toast } from '../util/toast.js';
 import { isContract } from '../workspace/file-kinds.js';
 import { reportError } from './report-error.js';
 import { focusIsNowhere } from '../util/dom.js';
-import { REGION_COPY_NAME, SRC_GEN_DIR } from '@contract-studio/conventions';
+import { deleteFileDetail, deleteFolderDetail } from './delete-confirmation.js';
 
 const join = (dir: string, name: string) => (dir ? `${dir}/${name}` : name);
 
@@ -75,7 +75,7 @@ export class FileOperations {
   async remove(entry: TreeEntry): Promise<void> {
     const { workspace, lsp } = this.d;
     try {
-      const detail = entry.type === 'dir' ? 'The folder and everything in it will be deleted from disk.' : await deleteFileDetail(entry.path);
+      const detail = entry.type === 'dir' ? await deleteFolderDetail(entry.path) : await deleteFileDetail(entry.path);
       if (!(await confirmAction(`Delete ${entry.path}?`, detail))) return;
       await api.remove(entry.path);
       for (const p of [...workspace.files.keys()]) if (p === entry.path || p.startsWith(entry.path + '/')) workspace.dropFile(p);
@@ -122,24 +122,6 @@ export class FileOperations {
 }
 
 /** Nobody holds the keyboard focus but the page itself or the editor. */
-/** A generated file's protected regions holding code (docs/ide.md "Deleting a generated file"), else nothing. */
-const GENERATED = new RegExp(`(^|/)${SRC_GEN_DIR}/generated/`);
-
-/**
- * What deleting file `path` does: deleted from disk; for a generated file whose regions hold code,
- * how many and which, and whether the next generation restores them from the last generation's copy.
- */
-async function deleteFileDetail(path: string): Promise<string> {
-  const gone = 'The file will be deleted from disk.';
-  if (!GENERATED.test(path)) return gone;
-  const held = await api.userCode(path).catch(() => undefined);
-  if (!held || held.regions.length === 0) return gone;
-  const which = `${held.regions.length} protected region${held.regions.length === 1 ? '' : 's'} (${held.regions.join(', ')})`;
-  return held.restorable
-    ? `${gone} It is a generated file holding your code in ${which}: the next generation (Generate All, a build, contract generate) generates it again with that code restored from the last generation's copy (${SRC_GEN_DIR}/${REGION_COPY_NAME}). There is no other undo.`
-    : `${gone} It is a generated file holding your code in ${which}, which could not be recorded: the next generation generates it with the defaults, and that code is lost unless you restore the file from git.`;
-}
-
 function focusIsFree(): boolean {
   return focusIsNowhere() || document.activeElement!.closest('.monaco-editor') !== null;
 }
