@@ -4,7 +4,8 @@
  * Like sup_core, it has no I/O and no clock: the caller passes times (virtual in tests,
  * CLOCK_MONOTONIC in ord_main.c), reports module completions, and fires the core's deadlines
  * with ord_core_advance(); ord_core_next_deadline() says when the next tick or critical-delay
- * check is due. Releases happen at absolute times tick_k = activation + k * PERIOD (no drift).
+ * check is due. Releases happen at absolute times tick_k = tick_0 + k * PERIOD (no drift), tick_0
+ * being when the activation is set up (OrdIo.setup_done_at).
  */
 #ifndef CONTRACT_ORD_CORE_H
 #define CONTRACT_ORD_CORE_H
@@ -77,6 +78,12 @@ typedef struct OrdIo {
        report, whose sentence then says whether the module was running, waiting or starved
        instead of the bare advice. Optional (NULL: never asked; the advice). */
     int (*module_activity)(void *ctx, const char *module, OrdModuleActivity *out);
+    /* the time now, read once an activation's set-up (its parameters and connections, sent by
+       set_param and connect_data) is done: the schema's tick 0 is then, not at the request, so
+       that ORD's own set-up, slow on a loaded machine, is not counted against cycle 0's
+       CRITICAL_DELAY (docs/semantics.md "Scheduler: ticks at absolute time"). Optional (NULL: the
+       set-up takes no time, tick 0 is the activation's t: a virtual clock). */
+    int64_t (*setup_done_at)(void *ctx);
 } OrdIo;
 
 /* A release not finished after this many periods of its schema, and at least ORD_STUCK_MIN_NS
@@ -90,6 +97,9 @@ typedef struct OrdSchemaStats {
     long cycles;            /* cycles released                                         */
     long completed;         /* cycles whose every module finished                      */
     long deadline_misses;   /* cycles not finished at tick + CRITICAL_DELAY (ORD:0)    */
+    long late_releases;     /* cycles ORD itself released at or past tick + CRITICAL_DELAY
+                               (real time only): not finished then, but no ORD:0, its
+                               modules had no time (`late release: ...`)                 */
     long overruns;          /* ticks skipped because the previous cycle still ran      */
     long missed_ticks;      /* ticks that passed while ORD could not run at all         */
     int64_t max_response_ns;/* longest tick -> last module finished                    */
@@ -109,7 +119,8 @@ void ord_core_stop(OrdCore *c);
 
 /** Activates schema `name` at time t with its parameter block (NULL: defaults). Refused (and
  *  ORD:1 emitted) if it shares a module with an active schema, including itself. The first
- *  cycle is released at t. Returns 0 when activated, -1 when refused or unknown. */
+ *  cycle (tick 0) is released once the set-up is done: at OrdIo.setup_done_at's time (t when
+ *  NULL). Returns 0 when activated, -1 when refused or unknown. */
 int ord_core_activate(OrdCore *c, int64_t t, const char *name, const void *params, size_t size,
                       const char *requester, uint32_t activation_id);
 /** Deactivates it (no further release, flows disconnected). activation_id 0 matches any;
@@ -131,8 +142,10 @@ void ord_core_advance(OrdCore *c, int64_t t);
 int ord_core_next_deadline(const OrdCore *c, int64_t *deadline);
 
 /** Real-time mode (ord_main.c): when ORD itself ran so late that a later tick is already due,
- *  the overtaken ticks are counted as missed instead of released back to back. Off by default
- *  (virtual clock: every tick is processed). */
+ *  the overtaken ticks are counted as missed instead of released back to back, and a cycle it
+ *  releases at or past its tick + CRITICAL_DELAY (its modules had no time) misses that deadline
+ *  without ORD:0 (`late release: ...`, OrdSchemaStats.late_releases). Off by default (virtual
+ *  clock: every tick is processed at its time). */
 void ord_core_set_skip_late_ticks(OrdCore *c, int on);
 
 int ord_core_schema_active(const OrdCore *c, const char *name);

@@ -383,9 +383,11 @@ SupIo fake_sup_io(FakeWorld *w) {
 
 static void o_set_param(void *ctx, const char *m, int port, const char *name, const void *v, size_t size,
                         const ContractType *t) {
+    ((FakeWorld *)ctx)->ord_clock += ((FakeWorld *)ctx)->ord_request_ns;
     s_set_param(ctx, m, port, name, v, size, t);
 }
 static void o_connect(void *ctx, const ContractDataFlow *f) {
+    ((FakeWorld *)ctx)->ord_clock += ((FakeWorld *)ctx)->ord_request_ns;
     WLOG((FakeWorld *)ctx, "connect %s:%d -> %s:%d * %d", f->src_module, f->src_port, f->dst_module,
          f->dst_port, f->periodicity);
 }
@@ -491,8 +493,12 @@ uint32_t fake_last_release(const FakeWorld *w, const char *module) {
     return 0;
 }
 
+int64_t fake_setup_done_at(void *ctx) {
+    return ((FakeWorld *)ctx)->ord_clock;
+}
+
 OrdIo fake_ord_io(FakeWorld *w) {
     OrdIo io = {w, o_set_param, o_connect, o_disconnect, o_release, o_emit, o_ack, o_trace, o_stuck, NULL, o_module_gone,
-                o_module_activity};
+                o_module_activity, NULL};
     return io;
 }

@@ -59,12 +59,18 @@ typedef struct FakeWorld {
        until started again */
     int nended;
     char ended[FW_MAX][16];
+    /* ORD's clock as its set-up sees it (fake_setup_done_at): each parameter and connection ORD
+       sends moves it `ord_request_ns` further (a loaded machine) */
+    int64_t ord_clock, ord_request_ns;
 } FakeWorld;
 
 SupIo fake_sup_io(FakeWorld *w);
 /** A supervisor core on a cleared world that records into `log`; NULL (error on stderr) if refused. */
 SupCore *fake_make_sup(FakeWorld *w, TestLog *log, const ContractSupervisorVocabulary *v, const char *name);
 OrdIo fake_ord_io(FakeWorld *w);
+/** OrdIo.setup_done_at over a FakeWorld (not set by fake_ord_io): its ord_clock, which each
+ *  parameter and connection ORD sent moved `ord_request_ns` further. */
+int64_t fake_setup_done_at(void *ctx);
 /** Marks a module as already running (started by someone else) at a priority. */
 void fake_set_running(FakeWorld *w, const char *module, int priority);
 int fake_is_running(const FakeWorld *w, const char *module);

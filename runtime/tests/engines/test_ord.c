@@ -10,6 +10,7 @@
 #include "fake_world.h"
 
 #define MS 1000000LL
+#define US 1000LL
 
 static TestLog LOG;
 
@@ -117,6 +118,79 @@ void test_ord_deadline_miss_is_inclusive_and_emits_ord0(void) {
     OrdSchemaStats st;
     ord_core_stats(c, "DIA", &st);
     CHECK(st.deadline_misses == 1 && st.completed == 2);
+    ord_core_destroy(c);
+}
+
+/* A slow set-up: DIA's parameter and two connections take 2 ms each (a loaded machine, ORD at a nice
+   level), 6 ms in all, DIA's whole CRITICAL_DELAY. Tick 0 is when the set-up is done, so that cycle 0
+   has its 6 ms: finished 4 ms after its release, it misses nothing (with tick 0 at the request, it
+   missed at 6 ms, before its modules had any time: the field test's spurious ORD:0). */
+void test_ord_slow_setup_not_counted_against_cycle_0(void) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    ord_core_destroy(c);
+    OrdIo io = fake_ord_io(&w);
+    io.setup_done_at = fake_setup_done_at;
+    char err[256] = "";
+    c = ord_core_create(&VOC, &io, err, sizeof err);
+    if (!c) { CHECK(0); return; }
+    ord_core_set_skip_late_ticks(c, 1); /* as the real ORD runs */
+    w.ord_clock = 0;
+    w.ord_request_ns = 2 * MS;
+    long gain = 9;
+    CHECK(ord_core_activate(c, 0, "DIA", &gain, sizeof gain, "SUP", 1) == 0);
+    CHECK(w.ord_clock == 6 * MS);
+    diamond_cycle(c, 6 * MS, 4 * MS); /* cycle 0 released at 6 ms, finished at 10 ms */
+    diamond_cycle(c, 16 * MS, 4 * MS); /* cycle 1 at tick 0 + PERIOD */
+    ord_core_advance(c, 25 * MS);
+    CHECK_LOG(&LOG, "setparam B:1 <8 bytes>", "connect A:0 -> D:0 * 2", "connect B:0 -> D:1 * 1",
+              "6000us activate DIA (activation #1 from SUP)", "ack SUP #1 done", "6000us release A (DIA)",
+              "7000us release B (DIA)", "7000us release C (DIA)", "9000us release D (DIA)", "16000us release A (DIA)",
+              "17000us release B (DIA)", "17000us release C (DIA)", "19000us release D (DIA)");
+    CHECK(log_find(&LOG, "emit ORD:0 DIA", 0) < 0);
+    OrdSchemaStats st;
+    CHECK(ord_core_stats(c, "DIA", &st) == 0);
+    CHECK(st.cycles == 2 && st.completed == 2 && st.deadline_misses == 0 && st.late_releases == 0);
+    CHECK(st.max_response_ns == 4 * MS);
+    ord_core_destroy(c);
+}
+
+/* one diamond cycle released at `at` whose modules take 800 us in all (A, C, B, D 200 us apart) */
+static void diamond_fast_cycle(OrdCore *c, int64_t at) {
+    ord_core_module_finished(c, at + 200 * US, "A");
+    ord_core_module_finished(c, at + 400 * US, "C");
+    ord_core_module_finished(c, at + 600 * US, "B");
+    ord_core_module_finished(c, at + 800 * US, "D");
+}
+
+/* Real time: ORD itself woke 7 ms after DIA's tick of 10 ms (a loaded machine), past its 6 ms
+   CRITICAL_DELAY but before the next tick, and released the cycle then: its modules had no time, the
+   miss is ORD's. No ORD:0 (a supervisor's rule on it would take out a schema whose modules did nothing
+   wrong), its own line instead; a cycle released late but with time left still misses with ORD:0. */
+void test_ord_cycle_released_past_its_critical_delay_is_ords_miss(void) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    ord_core_set_skip_late_ticks(c, 1);
+    ord_core_activate(c, 0, "DIA", NULL, 0, "SUP", 1);
+    diamond_fast_cycle(c, 0);
+    ord_core_advance(c, 17 * MS); /* the 10 ms tick, ORD running at 17 ms: 7 ms late */
+    diamond_fast_cycle(c, 17 * MS);
+    ord_core_advance(c, 26 * MS); /* the 20 ms tick at 26 ms: 6 ms late, exactly its delay */
+    diamond_fast_cycle(c, 26 * MS);
+    ord_core_advance(c, 35 * MS); /* the 30 ms tick at 35 ms: 5 ms late, 1 ms left */
+    diamond_cycle(c, 35 * MS, 4 * MS); /* ...which its modules overrun: their miss */
+    ord_core_advance(c, 39 * MS);
+    CHECK(log_find(&LOG, "16000us late release: DIA cycle 1 released 7000 us after its tick, past CRITICAL_DELAY 6000 us (ORD late, no ORD:0)", 0) >= 0);
+    CHECK(log_find(&LOG, "26000us late release: DIA cycle 2 released 6000 us after its tick, past CRITICAL_DELAY 6000 us (ORD late, no ORD:0)", 0) >= 0);
+    CHECK(log_find(&LOG, "deadline miss: DIA cycle 1", 0) < 0 && log_find(&LOG, "deadline miss: DIA cycle 2", 0) < 0);
+    int i = log_find(&LOG, "36000us deadline miss: DIA cycle 3 (ORD:0)", 0);
+    CHECK(i >= 0 && log_find(&LOG, "emit ORD:0 DIA", 0) == i + 1);
+    CHECK(log_find(&LOG, "emit ORD:0 DIA", i + 2) < 0);
+    OrdSchemaStats st;
+    CHECK(ord_core_stats(c, "DIA", &st) == 0);
+    CHECK(st.cycles == 4 && st.completed == 4 && st.deadline_misses == 1 && st.late_releases == 2);
     ord_core_destroy(c);
 }
 
