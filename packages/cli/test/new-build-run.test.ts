@@ -482,7 +482,7 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(out.result.issues.map((i) => [i.kind, i.module])).toEqual([['module-stuck', 'CTL']]);
         // the schema's figures from the run's logs, for a CI gate: its first cycle never completed, one
         // deadline miss, and every tick of the 3 s after it skipped (counted as ORD counts them)
-        expect(out.schemas).toEqual([{ schema: 'goTo', completedCycles: 0, maxResponseNs: 0, deadlineMisses: 1, overruns: expect.any(Number), heldCycles: 0, missedTicks: expect.any(Number) }]);
+        expect(out.schemas).toEqual([{ schema: 'goTo', completedCycles: 0, maxResponseNs: 0, deadlineMisses: 1, overruns: expect.any(Number), heldCycles: 0, missedTicks: expect.any(Number), lateReleases: 0 }]);
         const [goTo] = out.schemas as Array<{ overruns: number; missedTicks: number }>;
         expect(goTo!.overruns + goTo!.missedTicks).toBeGreaterThan(200);
     }, 240_000);

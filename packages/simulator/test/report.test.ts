@@ -87,7 +87,7 @@ describe('the text report\'s times', () => {
         expect(text).toContain('t=60ms X:0 3\n                  schema loop: 0 completed cycles, 2 deadline misses, 0 overruns, 1 held cycle\n  passed:');
         // and as data in the JSON report
         expect(JSON.parse(jsonReport([result])).scenarios[0].schemas).toEqual([
-            { schema: 'loop', completedCycles: 0, maxResponseNs: 0, deadlineMisses: 2, overruns: 0, heldCycles: 1, missedTicks: 0 },
+            { schema: 'loop', completedCycles: 0, maxResponseNs: 0, deadlineMisses: 2, overruns: 0, heldCycles: 1, missedTicks: 0, lateReleases: 0 },
         ]);
     });
 

@@ -53,7 +53,7 @@ function describeCause(c: RuleCause): string {
 const SUPERVISOR_TOLD = new Set(['function_started', 'function_stopped', 'function_refused', 'refused', 'error', 'warning', 'activation_refused']);
 /* (not told: ORD's `late_ack` and `ignored: M finished outside a cycle`, expected when a schema is
    deactivated while its modules run; its `ignored: deactivate S (not this activation)` is: ignoredUndo) */
-const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'overrun', 'overrun_ended', 'missed_tick', 'missed_ticks_ended', 'gave_up', 'held', 'resumed', 'stuck', 'unstuck', 'warning',
+const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'late_release', 'overrun', 'overrun_ended', 'missed_tick', 'missed_ticks_ended', 'gave_up', 'held', 'resumed', 'stuck', 'unstuck', 'warning',
     'parameterize', 'connect', 'disconnect']);
 
 /**
@@ -311,6 +311,8 @@ export interface SchemaFigures {
     overruns: number;
     heldCycles: number;
     missedTicks: number;
+    /** Cycles ORD itself released at or past their CRITICAL_DELAY (`late release: ...`): missed, but no ORD:0, not in deadlineMisses. */
+    lateReleases: number;
 }
 
 /** A periodic schema's figures with its name, as `schemaFigures()` lists them. */
@@ -679,7 +681,7 @@ export class StoryTeller {
                 this.schemasLeftOut++;
                 return undefined;
             }
-            f = { completedCycles: 0, maxResponseNs: 0, deadlineMisses: 0, overruns: 0, heldCycles: 0, missedTicks: 0 };
+            f = { completedCycles: 0, maxResponseNs: 0, deadlineMisses: 0, overruns: 0, heldCycles: 0, missedTicks: 0, lateReleases: 0 };
             this.schemas.set(ownString(name), f);
         }
         return f;
@@ -704,6 +706,11 @@ export class StoryTeller {
             if (f) f.deadlineMisses++;
         } else {
             const what = fields['what'];
+            if (what === 'late_release') {
+                const f = this.figuresOf(fields['schema']);
+                if (f) f.lateReleases++;
+                return;
+            }
             if (what !== 'overrun' && what !== 'overrun_ended' && what !== 'held' && what !== 'missed_tick' && what !== 'missed_ticks_ended') return;
             const skipped = skippedReleasesOf(fields);
             const held = what === 'held' ? 1 : 0;
@@ -721,7 +728,7 @@ export class StoryTeller {
      * One line per periodic schema ORD completed, missed or overran a cycle of, in name order, told
      * before the counts: `schema velocityLoop: 492 completed cycles (response max 89.221 ms), 2
      * deadline misses, 9 overruns, 1 held cycle; release lateness p50 23.1 µs, p99 965 µs, max 8.8 ms`
-     * (held cycles and ORD's missed ticks when any; how late ORD released its cycles when the log has
+     * (held cycles, ORD's missed ticks and the cycles it released past their CRITICAL_DELAY when any; how late ORD released its cycles when the log has
      * their releases: release-lateness.ts).
      */
     schemaLines(): string[] {
@@ -732,6 +739,7 @@ export class StoryTeller {
             `schema ${f.schema}: ${plural(f.completedCycles, 'completed cycle')}${f.completedCycles ? ` (response max ${durationText(f.maxResponseNs)})` : ''}, ` +
             `${plural(f.deadlineMisses, 'deadline miss', 'deadline misses')}, ${plural(f.overruns, 'overrun')}` +
             `${f.heldCycles ? `, ${plural(f.heldCycles, 'held cycle')}` : ''}${f.missedTicks ? `, ${plural(f.missedTicks, 'missed tick')} (ORD itself late)` : ''}` +
+            `${f.lateReleases ? `, ${plural(f.lateReleases, 'cycle')} released past CRITICAL_DELAY (ORD itself late, no ORD:0)` : ''}` +
             `${this.lateness.get(f.schema)?.text().replace(/^./, '; $&') ?? ''}${upTo}`);
         if (this.schemasLeftOut) lines.push(`(${plural(this.schemasLeftOut, 'record')} of schemas past the ${STORY_FOLLOWED} followed: in the counts below only)`);
         lines.push(...this.partialLines());

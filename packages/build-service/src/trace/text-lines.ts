@@ -35,6 +35,8 @@ export const SCHEDULER_LINES: readonly LinePattern[] = [
     { what: 'ignored', re: new RegExp(`^ignored: deactivate ${ID} \\(not this activation\\)$`), keys: ['schema'] },
     // (older logs: no cycle)
     { what: 'deadline_miss', re: new RegExp(`^deadline miss: ${ID}(?: cycle (\\d+))? \\(ORD:0\\)$`), keys: ['schema', 'cycle'] },
+    // ORD itself released the cycle at or past its CRITICAL_DELAY (a loaded machine): its miss, no ORD:0 (since 2026-12-07)
+    { what: 'late_release', re: new RegExp(`^late release: ${ID} cycle (\\d+) released (\\d+) us after its tick, past CRITICAL_DELAY (\\d+) us`), keys: ['schema', 'cycle', 'late_us', 'critical_delay_us'] },
     // `overrun: S cycle still running (CTL, EST), release skipped`: the modules it still runs (logs before 2026-12-07 name none)
     { what: 'overrun', re: new RegExp(`^overrun: ${ID} cycle still (running|held)(?: \\((${ID}(?:, ${ID})*(?:, \\.\\.\\.)?)\\))?`), keys: ['schema', 'state', 'modules'] },
     { what: 'overrun_ended', re: new RegExp(`^overrun: ${ID} cycle ended after (\\d+) skipped releases$`), keys: ['schema', 'skipped'] },

@@ -104,6 +104,9 @@ describe('reading a log', () => {
         expect(fields('scheduler', 'missed tick of SLW (cycle 12)')).toEqual({ what: 'missed_tick', schema: 'SLW', cycle: 12 });
         expect(fields('scheduler', 'deadline miss: DIA cycle 7 (ORD:0)')).toEqual({ what: 'deadline_miss', schema: 'DIA', cycle: 7 });
         expect(fields('scheduler', 'deadline miss: DIA (ORD:0)')).toEqual({ what: 'deadline_miss', schema: 'DIA' }); // older logs
+        // ORD released the cycle past its CRITICAL_DELAY itself: its miss, no ORD:0
+        expect(fields('scheduler', 'late release: DIA cycle 1 released 7000 us after its tick, past CRITICAL_DELAY 6000 us (ORD late, no ORD:0)'))
+            .toEqual({ what: 'late_release', schema: 'DIA', cycle: 1, late_us: 7000, critical_delay_us: 6000 });
         expect(fields('scheduler', 'activate conveyor (activation #2 from LIN) and more')).toEqual({ what: 'other' });
         expect(fields('scheduler', 'conflict: ICF shares a module with active ISC (ORD:1)')).toEqual({ what: 'conflict', schema: 'ICF', active: 'ISC' });
         expect(fields('scheduler', 'overrun: DIA cycle still running, release skipped')).toEqual({ what: 'overrun', schema: 'DIA', state: 'running' }); // older logs
@@ -693,6 +696,18 @@ describe('reading a log', () => {
             '+0.000974s ORD  deadline miss (ORD:0): fastLoop cycle 68 (ORD late: it released the cycle 780 µs after its tick, 20 µs before CRITICAL_DELAY 800 µs, leaving ENC 20 µs)',
             '+0.001974s ORD  deadline miss (ORD:0): fastLoop cycle 69 (not finished: CUR, ENC; ORD released the cycle 200 µs after its tick, of CRITICAL_DELAY 800 µs)',
             '+0.002974s ORD  deadline miss (ORD:0): fastLoop cycle 70 (not finished: ENC)',
+        ]);
+        // since 2026-12-07 ORD sends no ORD:0 for a cycle it released itself at or past CRITICAL_DELAY (no miss
+        // record): its own line tells that miss as ORD's
+        const ordLate = storyOfLog('ORD_1.csv', [
+            '5000826000,w,ORD,ord_release,ENC,,0,schema=fastLoop cycle=67 tick_ns=5000000000 release_ns=5000826000 release=1',
+            '5000826000,w,ORD,scheduler,,,0,"late release: fastLoop cycle 67 released 826 us after its tick, past CRITICAL_DELAY 800 us (ORD late, no ORD:0)"',
+            '5001100000,w,ORD,ord_complete,,,0,schema=fastLoop cycle=67 tick_ns=5000000000 response_ns=1100000',
+        ]);
+        expect(ordLate.filter((l) => l.includes('late release') || l.includes('deadline miss'))).toEqual([
+            '+0.000000s ORD  late release: fastLoop cycle 67 released 826 us after its tick, past CRITICAL_DELAY 800 us (ORD late, no ORD:0)',
+            'schema fastLoop: 1 completed cycle (response max 1.1 ms), 0 deadline misses, 0 overruns, 1 cycle released past CRITICAL_DELAY (ORD itself late, no ORD:0); release lateness p50 826 µs, p99 826 µs, max 826 µs',
+            '3 records: 1 module release, 1 completed cycle, 0 deadline misses, 0 overruns, 0 held cycles, 0 rule changes, 0 data and 0 event deliveries, 0 unreadable lines',
         ]);
         // a new activation's cycle 0 waits for its own releases only: DRV's release of the deactivated
         // activation's cycle 0, acknowledged late, is not one of them (field test 7)

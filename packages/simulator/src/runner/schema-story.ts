@@ -26,7 +26,7 @@ export function ordWhat(l: { who: string; line: string }): { what: string; field
 }
 
 /** ORD's lines that count in a periodic schema's figures (StoryTeller's countSchema). */
-const FIGURE_LINES = new Set(['overrun', 'overrun_ended', 'held', 'missed_tick', 'missed_ticks_ended']);
+const FIGURE_LINES = new Set(['overrun', 'overrun_ended', 'held', 'missed_tick', 'missed_ticks_ended', 'late_release']);
 
 /** ORD's own line of a deadline miss; the verbose report says it from the typed record instead. */
 export const isMissLine = (l: { who: string; line: string }) => ordWhat(l).what === 'deadline_miss';
