@@ -193,6 +193,14 @@ void scenario_scheduler(const char *root, const char *bin, const char *launcher)
     char *ord = read_csv_log(&s, "ORD"), *isu = read_csv_log(&s, "ISU");
     long long tick0 = ord_tick0(ord, "IMA", 20000000LL);
     long long t_deact = csv_time_of(ord, NULL, ",deactivate ISC", NULL);
+    /* tick 0 is when ORD has set ISC up: after its last connection was logged (and sent), not at
+       the request, before the parameter (docs/semantics.md "Scheduler: ticks at absolute time") */
+    long long t_param = csv_time_of(ord, NULL, ",parameterize IMA:0 gain", NULL),
+              t_connected = csv_time_of(ord, NULL, ",connect IMA:0 -> IMC:0 * 2", NULL);
+    char setup[200];
+    snprintf(setup, sizeof setup, "ISC's tick 0 is after its set-up (parameter and connections: %lld us), not before",
+             t_connected >= 0 && t_param >= 0 ? (t_connected - t_param) / 1000 : -1);
+    check(tick0 > 0 && t_param > 0 && t_connected >= t_param && tick0 >= t_connected, setup);
     long window = tick0 > 0 && t_deact >= tick0 ? (long)((t_deact - tick0) / 20000000LL) + 1 : -1;
     long ticks = a.nstart + overruns + missed;
     char per_period[300];
