@@ -775,7 +775,7 @@ export class Job {
       const budget = this.realtimeBudget;
       const collected = await collectRunArtifacts(reader, workDir, bounds, (name, data) => {
         this.runIssues.log(data, name);
-        if (budget && moduleOfLog(name) === 'ORD') throttled = budgetThrottling(data, budget.periodUs * 1000);
+        if (budget && moduleOfLog(name) === 'ORD') throttled = budgetThrottling(data, budget.periodUs * 1000, budget.runtimeUs * 1000);
       }, {
         launchedModules: this.runIssues.launchedModules,
         signal: abort.signal,

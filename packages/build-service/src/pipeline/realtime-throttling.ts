@@ -3,9 +3,10 @@
  * "Real-time mode": `cpu.rt_runtime_us` per `cpu.rt_period_us`), read from ORD's CSV log. The
  * kernel counts no real-time throttling in cgroup v1 (`cpu.stat` counts the CFS quota only), so
  * it is recognised by what it does: once the architecture has used its budget in a period, nothing
- * of it runs until the period ends, so ORD — which writes a record at every release — is silent
- * until then, and each such silence ends at the same point of the budget's period (the kernel's
- * period timer). Silences of a loaded machine end anywhere.
+ * of it runs until the period ends, so ORD is silent until then, though it has work due — a tick to
+ * release, a deadline to tell — and each such silence ends at the same point of the budget's period
+ * (the kernel's period timer). Silences of a loaded machine end anywhere; those of an ORD with
+ * nothing to do (between the ticks of a 100 ms or 1 s schema) are no throttling, wherever they end.
  */
 import { MinHeap } from '../trace/min-heap.js';
 
@@ -15,20 +16,38 @@ export const THROTTLED_ADVICE = 'Give it more CPUs to share it (contract run --c
 
 /** A silence of ORD this long or more is looked at (a 1 kHz schema's ORD writes every millisecond). */
 const SILENCE_NS = 3_000_000;
+/**
+ * A silence counts when ORD had work due this long before it ended, or longer: a tick it released
+ * or missed, or a deadline it told, that fell in the silence (an `ord_release`'s `tick_ns`, the tick
+ * of a `missed tick of S (cycle k)` line on S's grid of ticks its releases show, an
+ * `ord_deadline_miss`'s `tick_ns` + `critical_delay_ns`), read from the records after it.
+ */
+const DUE_NS = 1_000_000;
 /** Bins of the phase in the period where silences end, and the window of bins around the commonest. */
 const PHASE_BIN_NS = 500_000;
 const PHASE_WINDOW_BINS = 2;
 /** Silences ending in that window: at least this many, and at least this share of all silences. */
 const MIN_THROTTLES = 3;
 const MIN_SHARE = 0.5;
+/** Bytes of a line read: its time, its kind and the start of its detail (an ord_release line is under 200). */
+const LINE_HELD = 512;
 
 export interface Throttling {
-  /** Silences of ORD that ended at the budget's period boundary. */
+  /** Silences of ORD with work due that ended at the budget's period boundary. */
   times: number;
-  /** Their length in all (from ORD's last record before each to its first after: about the time throttled). */
+  /**
+   * Their length in all: each from the first work due in it (or ORD's last record before it, if
+   * later) to ORD's first record after it, at most what the budget can take of a period (period - runtime).
+   */
   totalNs: number;
-  /** Silences of ORD of SILENCE_NS or more, wherever they ended. */
+  /** Silences of ORD of SILENCE_NS or more with work due in them (DUE_NS or more before their end), wherever they ended. */
   silences: number;
+}
+
+/** One of ORD's records: when it was written, and when the work it did was due (Infinity: no time said). */
+interface Timed {
+  t: number;
+  due: number;
 }
 
 /**
@@ -37,12 +56,45 @@ export interface Throttling {
  */
 const REORDER = 1024;
 
+const ORD_RELEASE = Buffer.from('ord_release');
+const SCHEDULER = Buffer.from('scheduler');
+const MISSED_TICK = /^"?missed tick of (\S+) \(cycle (\d+)\)/;
+const RELEASE_OF = /^"?schema=(\S+) cycle=(\d+) tick_ns=(\d+)/;
+/** Schemas whose grid of ticks is followed (a run has a few; a forged log many). */
+const GRIDS_FOLLOWED = 64;
+const ORD_DEADLINE_MISS = Buffer.from('ord_deadline_miss');
+
+/** The digits after `key` (`tick_ns=`) in line[from, to), or NaN. */
+function numberAfter(line: Uint8Array, from: number, to: number, key: Buffer): number {
+  const at = Buffer.from(line.buffer, line.byteOffset + from, to - from).indexOf(key);
+  if (at < 0) return NaN;
+  let v = 0, digits = 0;
+  for (let i = from + at + key.length; i < to; i++) {
+    const c = line[i]!;
+    if (c < 48 || c > 57) break;
+    v = v * 10 + (c - 48);
+    digits++;
+  }
+  return digits > 0 && digits <= 19 ? v : NaN;
+}
+const TICK_NS = Buffer.from('tick_ns=');
+const CRITICAL_DELAY_NS = Buffer.from('critical_delay_ns=');
+
+/** Whether line[from, to) is `word`. */
+function fieldIs(line: Uint8Array, from: number, to: number, word: Buffer): boolean {
+  if (to - from !== word.length) return false;
+  for (let i = 0; i < word.length; i++) if (line[from + i] !== word[i]) return false;
+  return true;
+}
+
 /**
  * Reads ORD's CSV log as it is given, chunk by chunk (`add`), in bounded memory whatever its size
- * (a 256 MiB log is millions of records): each line's first field, mono_ns, read in place from the
- * bytes (a line whose first field is not 1 to 19 digits, the header, is skipped), the times put in order
- * through a window of REORDER records, and each silence of SILENCE_NS or more counted in the bin
- * of the period's phase where it ended, with its length: no text of the log, no list of its times.
+ * (a 256 MiB log is millions of records): of each line, its first LINE_HELD bytes, read in place:
+ * its first field, mono_ns (a line whose first field is not 1 to 19 digits, the header, is
+ * skipped), and for an `ord_release` or `ord_deadline_miss` when its work was due; the records put in
+ * order through a window of REORDER records, and each silence of SILENCE_NS or more in which ORD had
+ * work due DUE_NS or more before its end counted in the bin of the period's phase where it ended,
+ * with its length: no text of the log, no list of its times.
  */
 export class ThrottlingReader {
   private readonly bins: number;
@@ -50,74 +102,136 @@ export class ThrottlingReader {
   private readonly count: Uint32Array;
   private readonly totalNs: Float64Array;
   private silences = 0;
-  /** The times read and not yet measured (the lowest goes first). */
-  private readonly pending = new MinHeap<number>((a, b) => a < b);
+  /** The records read and not yet measured (the earliest goes first). */
+  private readonly pending = new MinHeap<Timed>((a, b) => a.t < b.t);
   private last = -1;
-  /** The line being read: its first field's value and digits so far, or past its first field (`skipping` to its end). */
-  private value = 0;
-  private digits = 0;
-  private skipping = false;
+  /** The last silence met, while the records after it may still say work was due in it. */
+  private open: { from: number; to: number; dueFrom: number } | undefined;
+  /** The line being read: its first LINE_HELD bytes. */
+  private readonly line = new Uint8Array(LINE_HELD);
+  private len = 0;
+  /** The most a throttled silence can last: the part of a period the budget does not give. */
+  private readonly mostNs: number;
+  /** Each schema's ticks as its releases show them: a cycle's tick, and the period (0 until two cycles were seen). */
+  private readonly grids = new Map<string, { cycle: number; tick: number; periodNs: number }>();
 
-  constructor(private readonly periodNs: number) {
+  /**
+   * `periodNs`: the budget's period; `runtimeNs`: what it gives of each (a silence is counted for
+   * at most the rest of the period, periodNs - runtimeNs).
+   */
+  constructor(private readonly periodNs: number, runtimeNs = 0) {
     this.bins = Math.max(1, Math.round(periodNs / PHASE_BIN_NS));
     this.count = new Uint32Array(this.bins);
     this.totalNs = new Float64Array(this.bins);
+    this.mostNs = Math.max(0, periodNs - Math.max(0, runtimeNs));
   }
 
   /** The next bytes of the log (a line may go on in the next chunk). */
   add(chunk: Uint8Array): void {
     const n = chunk.length;
     for (let i = 0; i < n;) {
-      if (this.skipping) {
-        const nl = chunk.indexOf(10, i);
-        if (nl < 0) return;
-        this.skipping = false;
-        this.value = 0;
-        this.digits = 0;
-        i = nl + 1;
-        continue;
+      const nl = chunk.indexOf(10, i);
+      const end = nl < 0 ? n : nl;
+      const take = Math.min(end - i, LINE_HELD - this.len);
+      if (take > 0) {
+        this.line.set(chunk.subarray(i, i + take), this.len);
+        this.len += take;
       }
-      const c = chunk[i++]!;
-      if (c >= 48 && c <= 57) {
-        this.value = this.value * 10 + (c - 48);
-        this.digits++;
-        continue;
-      }
-      // a 64-bit time, past 2^53 on a machine up for 105 days: a double then rounds it to a few ns, nothing to silences of milliseconds
-      if (c === 44 /* , */ && this.digits > 0 && this.digits <= 19) this.time(this.value);
-      if (c === 10) {
-        // a line with no comma: the next one begins
-        this.value = 0;
-        this.digits = 0;
-      } else this.skipping = true;
+      if (nl < 0) return;
+      this.endLine();
+      i = nl + 1;
     }
   }
 
-  private time(t: number): void {
-    this.pending.push(t);
+  /** The line held is complete: its record, if it is one, taken. */
+  private endLine(): void {
+    const { line, len } = this;
+    this.len = 0;
+    let value = 0, i = 0;
+    for (; i < len; i++) {
+      const c = line[i]!;
+      if (c < 48 || c > 57) break;
+      value = value * 10 + (c - 48);
+    }
+    // a 64-bit time, past 2^53 on a machine up for 105 days: a double then rounds it to a few ns, nothing to silences of milliseconds
+    if (i === 0 || i > 19 || i >= len || line[i] !== 44 /* , */) return;
+    // fields: mono_ns, wall_time, module, event, peer, port, size, detail
+    const commas: number[] = [i];
+    for (let j = i + 1; j < len && commas.length < 7; j++) if (line[j] === 44) commas.push(j);
+    let due = Infinity;
+    if (commas.length === 7) {
+      const kindFrom = commas[2]! + 1, kindTo = commas[3]!, detailFrom = commas[6]! + 1;
+      if (fieldIs(line, kindFrom, kindTo, ORD_RELEASE)) {
+        const tick = numberAfter(line, detailFrom, len, TICK_NS);
+        if (Number.isFinite(tick)) due = tick;
+        this.followGrid(Buffer.from(line.buffer, line.byteOffset + detailFrom, len - detailFrom).toString('latin1'));
+      } else if (fieldIs(line, kindFrom, kindTo, SCHEDULER) && line[detailFrom + (line[detailFrom] === 34 ? 1 : 0)] === 109 /* m */) {
+        due = this.missedTickDue(Buffer.from(line.buffer, line.byteOffset + detailFrom, len - detailFrom).toString('latin1'));
+      } else if (fieldIs(line, kindFrom, kindTo, ORD_DEADLINE_MISS)) {
+        const tick = numberAfter(line, detailFrom, len, TICK_NS), cd = numberAfter(line, detailFrom, len, CRITICAL_DELAY_NS);
+        if (Number.isFinite(tick) && Number.isFinite(cd)) due = tick + cd;
+      }
+    }
+    this.pending.push({ t: value, due });
     if (this.pending.size > REORDER) this.measure(this.pending.pop()!);
   }
 
-  /** The next time in order: the silence before it, when long enough, counted. */
-  private measure(t: number): void {
+  /** An `ord_release`'s detail: its schema's grid of ticks followed. */
+  private followGrid(detail: string): void {
+    const m = RELEASE_OF.exec(detail);
+    if (!m) return;
+    const cycle = Number(m[2]), tick = Number(m[3]);
+    const g = this.grids.get(m[1]!);
+    if (!g) {
+      if (this.grids.size < GRIDS_FOLLOWED) this.grids.set(m[1]!, { cycle, tick, periodNs: 0 });
+      return;
+    }
+    // a later cycle of the same activation gives the period; cycle 0 again (a new activation) keeps it
+    if (cycle > g.cycle && tick > g.tick) g.periodNs = (tick - g.tick) / (cycle - g.cycle);
+    g.cycle = cycle;
+    g.tick = tick;
+  }
+
+  /** When the tick of a `missed tick of S (cycle k)` line was due, on S's grid (Infinity when it is not known). */
+  private missedTickDue(detail: string): number {
+    const m = MISSED_TICK.exec(detail);
+    const g = m ? this.grids.get(m[1]!) : undefined;
+    if (!g || g.periodNs <= 0) return Infinity;
+    return g.tick + (Number(m![2]) - g.cycle) * g.periodNs;
+  }
+
+  /** The next record in order: the silence before it, when long enough, opened; the work it did, if due in the open silence, noted. */
+  private measure(r: Timed): void {
     const last = this.last;
-    this.last = t;
-    if (last < 0) return; // the first time: no silence before it
-    const ns = t - last;
-    if (ns < SILENCE_NS) return;
-    const bin = Math.floor((t % this.periodNs) / PHASE_BIN_NS) % this.bins;
+    this.last = r.t;
+    if (last >= 0 && r.t - last >= SILENCE_NS) {
+      this.close();
+      this.open = { from: last, to: r.t, dueFrom: Infinity };
+    }
+    const o = this.open;
+    if (o && r.due > o.from && r.due < o.to && r.due < o.dueFrom) o.dueFrom = r.due;
+  }
+
+  /** The open silence counted, if ORD had work due DUE_NS or more before its end. */
+  private close(): void {
+    const o = this.open;
+    this.open = undefined;
+    if (!o || !(o.to - o.dueFrom >= DUE_NS)) return;
+    const bin = Math.floor((o.to % this.periodNs) / PHASE_BIN_NS) % this.bins;
     this.silences++;
     this.count[bin]!++;
-    this.totalNs[bin]! += ns;
+    this.totalNs[bin]! += Math.min(o.to - o.dueFrom, this.mostNs);
   }
 
   /**
    * How often the log shows the run throttled by a real-time budget of the period, or undefined
-   * when it does not: MIN_THROTTLES or more silences of ORD of SILENCE_NS or more that end within
-   * 1 ms of one point of the period, and at least half of all its silences.
+   * when it does not: MIN_THROTTLES or more silences of ORD with work due that end within 1 ms of
+   * one point of the period, and at least half of all such silences.
    */
   result(): Throttling | undefined {
+    if (this.len > 0) this.endLine();
     while (this.pending.size) this.measure(this.pending.pop()!);
+    this.close();
     const { bins, count } = this;
     const near = (c: number, add: (bin: number) => number): number => {
       let n = 0;
@@ -142,9 +256,9 @@ export class ThrottlingReader {
   }
 }
 
-/** ORD's whole log (`ordLog`, its CSV bytes or text) read by a ThrottlingReader for a budget of period `periodNs`. */
-export function budgetThrottling(ordLog: Uint8Array | string, periodNs: number): Throttling | undefined {
-  const reader = new ThrottlingReader(periodNs);
+/** ORD's whole log (`ordLog`, its CSV bytes or text) read by a ThrottlingReader for a budget of `runtimeNs` per period `periodNs`. */
+export function budgetThrottling(ordLog: Uint8Array | string, periodNs: number, runtimeNs = 0): Throttling | undefined {
+  const reader = new ThrottlingReader(periodNs, runtimeNs);
   reader.add(typeof ordLog === 'string' ? Buffer.from(ordLog) : ordLog);
   return reader.result();
 }
@@ -156,6 +270,6 @@ export function budgetThrottling(ordLog: Uint8Array | string, periodNs: number):
 export function throttlingWarning(t: Throttling, runtimeUs: number, periodUs: number): string {
   return `the architecture was throttled by its real-time CPU budget about ${t.times} times (${(t.totalNs / 1e9).toFixed(2)} s in all): ` +
     `the sandbox gives the whole architecture ${runtimeUs / 1000} ms of each ${periodUs / 1000} ms on each CPU, and it used them up; ` +
-    `nothing of it ran for the rest of those periods (ORD silent, ending each time at the same point of the period), so ORD's missed ticks ` +
+    `nothing of it ran for the rest of those periods (ORD silent with ticks due, ending each time at the same point of the period), so ORD's missed ticks ` +
     `and the deadline misses then are the budget's, not the modules'. ${THROTTLED_ADVICE}`;
 }
