@@ -14,7 +14,7 @@ export { durationText } from './duration-text.js';
 export { confirmingHold, flowHoldName, type ConfirmingHold } from './action-holds.js';
 export { launcherEndLine, endedOnItsOwn, type LauncherEnd } from './launcher-end-line.js';
 export { LAUNCHER_LINES_FILE, MAX_LAUNCHER_LINES_BYTES, MAX_LAUNCHER_LINES, launcherLinesOfFile, LauncherLinesQueue, type LauncherFileLine } from './launcher-lines-file.js';
-export { renderStory, StoryTeller, CUT_RECORD, crashText, unheardEventText, type SchemaFigures, type NamedSchemaFigures, dataDropReason, userRecordText, keptRequestsText, askedToStopText, holdText, ownRunEndText, readableCause, missWaitText, missCriticalDelayNs, priorityText, LATE_RELEASE_SHARE, stuckSaysGone, ignoredUndo, LATE_RELEASE_NS, STORY_FOLLOWED } from './story.js';
+export { renderStory, StoryTeller, CUT_RECORD, crashText, unheardEventText, type SchemaFigures, type NamedSchemaFigures, dataDropReason, userRecordText, keptRequestsText, askedToStopText, holdText, ownRunEndText, readableCause, missWaitText, missCriticalDelayNs, earlyFinish, sinceTickText, type EarlyAck, type EarlyFinish, priorityText, LATE_RELEASE_SHARE, stuckSaysGone, ignoredUndo, LATE_RELEASE_NS, STORY_FOLLOWED } from './story.js';
 export { DataFlowUse, SILENT_FLOW_MIN_NS, SPARSE_FLOW_RATIO } from './data-flow-use.js';
 export { SupervisorFlowUse } from './supervisor-flow-use.js';
 export { EventWaits, flowWaitsLine, waitTotalsText, type FlowWaitTotals } from './event-waits.js';

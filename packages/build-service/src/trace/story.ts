@@ -100,6 +100,38 @@ export const LATE_RELEASE_NS = 1_000_000;
  */
 export const LATE_RELEASE_SHARE = 0.1;
 
+/** A module ORD counted unfinished at a deadline miss, though its own records say it finished in time. */
+export interface EarlyAck {
+    module: string;
+    /** When it finished, ns after the cycle's tick (its ack_sent, else its run_finished). */
+    sinceTickNs: number;
+    how: 'its ack sent' | 'its run finished';
+}
+
+/** The modules of a miss that finished in time (`text`), and those really not finished (`rest`, written out). */
+export interface EarlyFinish {
+    text: string;
+    rest: string;
+}
+
+/** `+2.250 ms`: a time after a cycle's tick, as the miss text gives it. */
+export function sinceTickText(ns: number): string {
+    return `+${(ns / 1e6).toFixed(3)} ms`;
+}
+
+/**
+ * The modules a deadline miss names as not finished, split by their own records: those that sent
+ * their ack (or ended their run) by the deadline (`deadlineNs` after the tick) are ORD's lateness,
+ * not theirs: `HOG finished at +2.250 ms (its ack sent), ORD had not read it at the deadline, 7.750
+ * ms later`. `missSinceTickNs`: when ORD told the miss. Undefined when none finished in time.
+ */
+export function earlyFinish(notFinished: readonly string[], acks: ReadonlyMap<string, EarlyAck>, deadlineNs: number): EarlyFinish | undefined {
+    const early = notFinished.map((m) => acks.get(m)).filter((a): a is EarlyAck => a !== undefined && a.sinceTickNs <= deadlineNs);
+    if (!early.length) return undefined;
+    const text = early.map((a) => `${a.module} finished at ${sinceTickText(a.sinceTickNs)} (${a.how}), ORD had not read it at the deadline, ${durationText(deadlineNs - a.sinceTickNs)} later`).join(', ');
+    return { text, rest: notFinished.filter((m) => !early.some((a) => a.module === m)).join(', ') };
+}
+
 /**
  * What a missed cycle was waiting for, as `contract trace` and the IDE's Monitor say it after
  * `deadline miss (ORD:0): S cycle k`: ` (held: nothing released, GRP still runs an earlier
@@ -116,12 +148,21 @@ export const LATE_RELEASE_SHARE = 0.1;
  * - from a tenth of it on: ` (not finished: ENC; ORD released the cycle 200 µs after its tick, of
  *   CRITICAL_DELAY 800 µs)`;
  * - a miss record without CRITICAL_DELAY (an older log): `; ORD released the cycle 13.4 ms after its
- *   tick` from LATE_RELEASE_NS on.
+ *   tick` from LATE_RELEASE_NS on;
+ * - modules ORD counted unfinished whose own records say they finished before the deadline
+ *   (`early`: their `ack_sent` to ORD, or `run_finished`, for that release) are not blamed: ` (HOG
+ *   finished at +2.250 ms (its ack sent), ORD had not read it at the deadline, 7.75 ms later: ORD
+ *   was late)`, beside those really not finished: ` (not finished: ARM; HOG finished ...: ORD was
+ *   late reading it)`.
  */
-export function missWaitText(heldFor: string | undefined, notFinished: string, firstReleaseLateNs?: number, heldForGone = false, criticalDelayNs?: number): string {
+export function missWaitText(heldFor: string | undefined, notFinished: string, firstReleaseLateNs?: number, heldForGone = false, criticalDelayNs?: number, early?: EarlyFinish): string {
     if (heldFor !== undefined && heldForGone) return ` (held: nothing released, ${heldFor} never finished an earlier release: it is no longer running)`;
     if (heldFor !== undefined) return ` (held: nothing released, ${heldFor} still runs an earlier release)`;
     const lateNs = firstReleaseLateNs;
+    const withEarly = (late: string): string => {
+        const parts = early!.rest ? [`not finished: ${early!.rest}`, `${early!.text}: ORD was late reading it`] : [`${early!.text}: ORD was late`];
+        return ` (${[...parts, ...(late ? [late] : [])].join('; ')})`;
+    };
     if (lateNs !== undefined && criticalDelayNs !== undefined && criticalDelayNs > 0) {
         const leftNs = criticalDelayNs - lateNs;
         const released = `released the cycle ${durationText(lateNs)} after its tick`;
@@ -131,11 +172,13 @@ export function missWaitText(heldFor: string | undefined, notFinished: string, f
             return ` (ORD late: it ${released}, ${when} CRITICAL_DELAY ${durationText(criticalDelayNs)}${leaving})`;
         }
         const late = lateNs >= criticalDelayNs * LATE_RELEASE_SHARE ? `ORD ${released}, of CRITICAL_DELAY ${durationText(criticalDelayNs)}` : '';
+        if (early) return withEarly(late);
         if (notFinished) return ` (not finished: ${notFinished}${late ? `; ${late}` : ''})`;
         return late ? ` (${late})` : '';
     }
     const late = lateNs !== undefined && lateNs >= LATE_RELEASE_NS
         ? `ORD released the cycle ${(lateNs / 1e6).toFixed(1)} ms after its tick` : '';
+    if (early) return withEarly(late);
     if (notFinished) return ` (not finished: ${notFinished}${late ? `; ${late}` : ''})`;
     return late ? ` (${late})` : '';
 }
@@ -325,6 +368,13 @@ interface CycleRunning {
     cycle: string;
     running: Set<string>;
     firstReleaseLateNs?: number;
+    /** Its tick (an ord_release's tick_ns), and each running module's release id. */
+    tickNs?: number;
+    releases?: Map<string, string>;
+    /** Running modules whose own records say they finished (ORD had not read their ack yet). */
+    acks?: Map<string, EarlyAck>;
+    /** Modules its deadline miss did not blame (they had finished): ORD's later read of their ack is told. */
+    readLate?: Set<string>;
 }
 
 /**
@@ -354,6 +404,8 @@ export class StoryTeller {
     private readonly gone = new Set<string>();
     /** Modules in the `running` sets of all cycles followed. */
     private running = 0;
+    /** Each running module's cycle (the last it was released in): its own ack_sent or run_finished is noted there. */
+    private readonly releasedIn = new Map<string, CycleRunning>();
     /**
      * Per supervisor (at most STORY_FOLLOWED): the hold record that would only confirm the action
      * line it wrote last (`start module M` then `module M: hold taken (started it)`): not told again.
@@ -434,6 +486,7 @@ export class StoryTeller {
         const k = r as KnownRecord;
         const what = String(k.fields['what'] ?? '');
         if (k.kind === 'supervisor') this.followAction(k, what);
+        if (k.kind === 'ack_sent' || k.kind === 'run_finished') this.followAck(k);
         this.undos.see(k);
         this.endedMidRun.see(k);
         this.dataFlows.see(k);
@@ -483,8 +536,9 @@ export class StoryTeller {
         }
         if (k.kind === 'scheduler' && what === 'other') return `${at(k)} (an ORD line this reader does not know) ${k.detail}`;
         if (k.kind === 'ord_release' || k.kind === 'ord_finished') {
+            const readLate = k.kind === 'ord_finished' ? this.readLateText(k) : undefined;
             this.followCycle(k);
-            return undefined;
+            return readLate && `${at(k)} ${readLate}`;
         }
         if (k.kind === 'ord_deadline_miss') return `${at(k)} ${this.missText(k)}`;
         if (k.kind === 'request_received' && !this.stopWhyTold) {
@@ -632,12 +686,55 @@ export class StoryTeller {
             }
             this.cycles.set(schema, s);
             if (this.running < RUNNING_FOLLOWED && !s.current.running.has(k.peer)) {
-                s.current.running.add(ownString(k.peer));
+                const module = ownString(k.peer);
+                s.current.running.add(module);
                 this.running++;
+                const tick = Number(k.fields['tick_ns']);
+                if (Number.isFinite(tick)) s.current.tickNs = tick;
+                (s.current.releases ??= new Map()).set(module, String(k.fields['release'] ?? ''));
+                s.current.acks?.delete(module);
+                this.releasedIn.set(module, s.current);
             }
         } else if (this.cycleOf(schema, cycle)?.running.delete(k.peer)) {
             this.running--;
+            if (this.releasedIn.get(k.peer) === this.cycleOf(schema, cycle)) this.releasedIn.delete(k.peer);
         }
+    }
+
+    /**
+     * ORD's `ord_finished` for a module its cycle's deadline miss did not blame: when ORD read the
+     * ack, `ORD read HOG's ack of slow cycle 152 at +13.820 ms, 11.570 ms after HOG sent it (ORD's
+     * response_ns counts to this read, not to HOG's finish)`.
+     */
+    private readLateText(k: KnownRecord): string | undefined {
+        const schema = String(k.fields['schema'] ?? ''), cycle = String(k.fields['cycle'] ?? '');
+        const c = this.cycleOf(schema, cycle);
+        const ack = c?.readLate?.has(k.peer) ? c.acks?.get(k.peer) : undefined;
+        if (!c || !ack || c.tickNs === undefined) return undefined;
+        const readNs = Number(k.monoNs) - c.tickNs;
+        return `read ${k.peer}'s ack of ${schema} cycle ${cycle} at ${sinceTickText(readNs)}, ${durationText(readNs - ack.sinceTickNs)} after ${k.peer} ${ack.how === 'its ack sent' ? 'sent it' : 'finished'} ` +
+            `(ORD's response_ns counts to this read, not to ${k.peer}'s finish)`;
+    }
+
+    /**
+     * A module's own `ack_sent` to ORD (`ACK_FINISHED id=N`, N its release) or `run_finished`
+     * (`activation=N ACK_FINISHED`): noted on the cycle that released it while ORD has not counted
+     * it finished, so that a deadline miss does not blame a module that had finished (ORD read its ack late).
+     */
+    private followAck(k: KnownRecord): void {
+        const c = this.releasedIn.get(k.module);
+        if (!c || !c.running.has(k.module) || c.tickNs === undefined) return;
+        let how: EarlyAck['how'];
+        if (k.kind === 'ack_sent') {
+            if (k.peer !== 'ORD' || !k.detail.startsWith('ACK_FINISHED')) return;
+            const id = k.fields['id'], released = c.releases?.get(k.module);
+            if (released && id !== undefined && String(id) !== released) return; // an ack of another release
+            how = 'its ack sent';
+        } else {
+            if (!/ ACK_FINISHED$/.test(k.detail) || c.acks?.has(k.module)) return;
+            how = 'its run finished';
+        }
+        (c.acks ??= new Map()).set(k.module, { module: k.module, sinceTickNs: Number(k.monoNs) - c.tickNs, how });
     }
 
     /** The release lateness of schema `schema` (undefined past STORY_FOLLOWED schemas). */
@@ -652,6 +749,7 @@ export class StoryTeller {
         const s = this.cycles.get(schema);
         if (!s) return;
         this.running -= s.current.running.size + (s.previous?.running.size ?? 0);
+        for (const c of [s.current, s.previous]) for (const m of c?.running ?? []) if (this.releasedIn.get(m) === c) this.releasedIn.delete(m);
         this.cycles.delete(schema);
     }
 
@@ -664,7 +762,13 @@ export class StoryTeller {
         const schema = String(k.fields['schema'] ?? '');
         const c = this.cycleOf(schema, String(k.fields['cycle'] ?? ''));
         const heldFor = this.held.get(schema);
-        return missWaitText(heldFor, c ? [...c.running].sort().join(', ') : '', c?.firstReleaseLateNs, heldFor !== undefined && this.isGone(heldFor), missCriticalDelayNs(k.fields));
+        const running = c ? [...c.running].sort() : [];
+        const cd = missCriticalDelayNs(k.fields);
+        // the deadline: tick + CRITICAL_DELAY, or (an older log) when ORD told the miss
+        const deadlineNs = c?.tickNs === undefined ? undefined : cd ?? Number(k.monoNs) - c.tickNs;
+        const early = c?.acks && deadlineNs !== undefined ? earlyFinish(running, c.acks, deadlineNs) : undefined;
+        if (c && early) for (const m of running) if (!early.rest.split(', ').includes(m)) (c.readLate ??= new Set()).add(m);
+        return missWaitText(heldFor, running.join(', '), c?.firstReleaseLateNs, heldFor !== undefined && this.isGone(heldFor), cd, early);
     }
 
     /** Whether `module` is known to be no longer running: a stuck record said so, or its exit record was read. */

@@ -709,6 +709,46 @@ describe('reading a log', () => {
             'schema fastLoop: 1 completed cycle (response max 1.1 ms), 0 deadline misses, 0 overruns, 1 cycle released past CRITICAL_DELAY (ORD itself late, no ORD:0); release lateness p50 826 µs, p99 826 µs, max 826 µs',
             '3 records: 1 module release, 1 completed cycle, 0 deadline misses, 0 overruns, 0 held cycles, 0 rule changes, 0 data and 0 event deliveries, 0 unreadable lines',
         ]);
+        // the auditor's miss (slow cycle 152, nice levels under load): HOG finished 2.24 ms after the tick and sent its ack
+        // at 2.25 ms; ORD read it 13.82 ms after the tick, past CRITICAL_DELAY 10 ms. HOG is not blamed: ORD was late
+        const T = 7_000_000_000;
+        const ordLog = [
+            `${T + 1_724_000},w,ORD,ord_release,HOG,,0,schema=slow cycle=152 tick_ns=${T} release_ns=${T + 1_724_000} release=684`,
+            `${T + 1_730_000},w,ORD,ord_release,ARM,,0,schema=slow cycle=152 tick_ns=${T} release_ns=${T + 1_730_000} release=685`,
+            `${T + 10_010_000},w,ORD,ord_deadline_miss,,,0,schema=slow cycle=152 tick_ns=${T} critical_delay_ns=10000000`,
+            `${T + 13_820_000},w,ORD,ack_received,HOG,,0,ACK_FINISHED id=684`,
+            `${T + 13_822_000},w,ORD,ord_finished,HOG,,0,schema=slow cycle=152 release=684 response_ns=13822000`,
+            `${T + 14_100_000},w,ORD,ack_received,ARM,,0,ACK_FINISHED id=685`,
+            `${T + 14_102_000},w,ORD,ord_finished,ARM,,0,schema=slow cycle=152 release=685 response_ns=14102000`,
+        ];
+        const hogLog = [
+            `${T + 1_750_000},w,HOG,request_received,ORD,,0,START`,
+            `${T + 1_751_000},w,HOG,run_started,ORD,,0,activation=152`,
+            `${T + 2_240_000},w,HOG,run_finished,,,0,activation=152 ACK_FINISHED`,
+            `${T + 2_250_000},w,HOG,ack_sent,ORD,,0,ACK_FINISHED id=684`,
+        ];
+        // ARM really finished after the deadline (its ack at +12 ms): it is still named
+        const armLog = [
+            `${T + 1_760_000},w,ARM,request_received,ORD,,0,START`,
+            `${T + 12_000_000},w,ARM,ack_sent,ORD,,0,ACK_FINISHED id=685`,
+        ];
+        const logOf = (name: string, lines: string[]) => ({ name, text: [CSV_HEADER, ...lines, ''].join('\n') });
+        const hogOnly = renderStory(parseTrace([logOf('ORD_1.csv', ordLog.filter((l) => !l.includes('ARM'))), logOf('HOG_1.csv', hogLog)]));
+        expect(hogOnly.filter((l) => / deadline miss \(|ORD  read /.test(l))).toEqual([
+            '+0.008286s ORD  deadline miss (ORD:0): slow cycle 152 (HOG finished at +2.250 ms (its ack sent), ORD had not read it at the deadline, 7.75 ms later: ORD was late; ORD released the cycle 1.724 ms after its tick, of CRITICAL_DELAY 10 ms)',
+            '+0.012098s ORD  read HOG\'s ack of slow cycle 152 at +13.822 ms, 11.572 ms after HOG sent it (ORD\'s response_ns counts to this read, not to HOG\'s finish)',
+        ]);
+        const both = renderStory(parseTrace([logOf('ORD_1.csv', ordLog), logOf('HOG_1.csv', hogLog), logOf('ARM_1.csv', armLog)]));
+        expect(both.filter((l) => l.includes(' deadline miss ('))).toEqual([
+            '+0.008286s ORD  deadline miss (ORD:0): slow cycle 152 (not finished: ARM; HOG finished at +2.250 ms (its ack sent), ORD had not read it at the deadline, 7.75 ms later: ORD was late reading it; ORD released the cycle 1.724 ms after its tick, of CRITICAL_DELAY 10 ms)',
+        ]);
+        // its run_finished alone (the ack_sent record lost): said so; HOG's ack after the deadline: HOG is named
+        const runOnly = renderStory(parseTrace([logOf('ORD_1.csv', ordLog.filter((l) => !l.includes('ARM'))), logOf('HOG_1.csv', hogLog.slice(0, 3))]));
+        expect(runOnly.filter((l) => l.includes(' deadline miss ('))[0]).toContain('(HOG finished at +2.240 ms (its run finished), ORD had not read it at the deadline, 7.76 ms later: ORD was late;');
+        const lateHog = renderStory(parseTrace([logOf('ORD_1.csv', ordLog.filter((l) => !l.includes('ARM'))), logOf('HOG_1.csv', hogLog.slice(0, 2).concat(`${T + 10_500_000},w,HOG,ack_sent,ORD,,0,ACK_FINISHED id=684`))]));
+        expect(lateHog.filter((l) => / deadline miss \(|ORD  read /.test(l))).toEqual([
+            '+0.008286s ORD  deadline miss (ORD:0): slow cycle 152 (not finished: HOG; ORD released the cycle 1.724 ms after its tick, of CRITICAL_DELAY 10 ms)',
+        ]);
         // a new activation's cycle 0 waits for its own releases only: DRV's release of the deactivated
         // activation's cycle 0, acknowledged late, is not one of them (field test 7)
         const again = storyOfLog('ORD_1.csv', [

@@ -291,6 +291,42 @@ describe('a deadline miss names what its cycle was waiting for', () => {
     expect(told).toEqual(want);
   });
 
+  it('a module whose own ack came by the deadline is not blamed for ORD reading it late (the auditor\'s slow cycle 152), live, parsed and recorded, as contract trace says', () => {
+    const T = 7_000_000_000;
+    const ord = [
+      `${T + 1_724_000},w,ORD,ord_release,HOG,,0,schema=slow cycle=152 tick_ns=${T} release_ns=${T + 1_724_000} release=684`,
+      `${T + 1_730_000},w,ORD,ord_release,ARM,,0,schema=slow cycle=152 tick_ns=${T} release_ns=${T + 1_730_000} release=685`,
+      `${T + 10_010_000},w,ORD,ord_deadline_miss,,,0,schema=slow cycle=152 tick_ns=${T} critical_delay_ns=10000000`,
+      `${T + 13_820_000},w,ORD,ack_received,HOG,,0,ACK_FINISHED id=684`,
+      `${T + 13_822_000},w,ORD,ord_finished,HOG,,0,schema=slow cycle=152 release=684 response_ns=13822000`,
+    ];
+    const hog = [
+      `${T + 1_750_000},w,HOG,request_received,ORD,,0,START`,
+      `${T + 1_751_000},w,HOG,run_started,ORD,,0,activation=152`,
+      `${T + 2_240_000},w,HOG,run_finished,,,0,activation=152 ACK_FINISHED`,
+      `${T + 2_250_000},w,HOG,ack_sent,ORD,,0,ACK_FINISHED id=684`,
+    ];
+    const want = ['deadline miss (ORD:0) cycle 152 (not finished: ARM; HOG finished at +2.250 ms (its ack sent), ORD had not read it at the deadline, 7.75 ms later: ORD was late reading it; ' +
+      'ORD released the cycle 1.724 ms after its tick, of CRITICAL_DELAY 10 ms)'];
+    // the live lines come as the logs grow: HOG's before ORD's miss
+    const byTime = [...ord.map((l) => ['ORD.csv', l] as const), ...hog.map((l) => ['HOG.csv', l] as const)].sort((a, b) => Number(a[1].split(',')[0]) - Number(b[1].split(',')[0]));
+    const live = new MonitorModel({ checkpointEvery: 16 });
+    byTime.forEach(([f, l], i) => live.pushLine(f, i + 2, l));
+    expect(missLabels(live)).toEqual(want);
+    const parsed = new MonitorModel({ checkpointEvery: 16 });
+    parsed.pushAll(byTime.map(([f, l], i) => parseRecordLine(f, i + 2, l)));
+    expect(missLabels(parsed)).toEqual(want);
+    const head = 'mono_ns,wall_time,module,event,peer,port,size,detail\n';
+    const files = [{ name: 'ORD_1.csv', text: `${head}${ord.join('\n')}\n` }, { name: 'HOG_1.csv', text: `${head}${hog.join('\n')}\n` }];
+    const steps = recordedRunSteps(files, 1000);
+    let step = steps.next();
+    while (!step.done) step = steps.next();
+    expect(missLabels(step.value.model)).toEqual(want);
+    const told = renderStory(parseTrace(files))
+      .filter((l) => l.includes(' deadline miss ')).map((l) => l.replace(/^.* deadline miss \(ORD:0\): \w+ cycle /, 'deadline miss (ORD:0) cycle '));
+    expect(told).toEqual(want);
+  });
+
   it('counts how late ORD released each cycle (its first release only), live, parsed and recorded alike, and says it as the panel does', () => {
     // cycle 0 on its tick + 30 µs, cycle 1 + 900 µs (its second module released later: not counted again), cycle 2 + 40 µs
     const log = [

@@ -21,7 +21,7 @@
  * Memory per record is therefore bounded by keepRecords, not by the run's length (a 1 kHz schema
  * for 60 s is about 1.5 million records).
  */
-import { LogClocks, UndosToOrd, type UnservedUndos, parseRecordLine, isRule, askedToStopText, crashText, unheardEventText, ignoredUndo, keptRequestsText, missCriticalDelayNs, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { LogClocks, UndosToOrd, type UnservedUndos, parseRecordLine, isRule, askedToStopText, crashText, unheardEventText, ignoredUndo, keptRequestsText, missCriticalDelayNs, missWaitText, earlyFinish, type EarlyAck, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { FOLDED_KINDS, applyRecord, endOrdSchemas, foldGone, applyUnfolded, isUnheardEvent, unheardPort } from './apply-record.js';
 import { nameIn, scanLine, scanned } from './line-scan.js';
 import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
@@ -165,13 +165,29 @@ class CycleModules {
   n = 0;
   /** release_ns - tick_ns of the cycle's first release (ORD woke late: missWaitText says so). */
   firstLateNs = 0;
+  /** The cycle's tick, on the Monitor's time line (its first release's time less its lateness). */
+  tickT = 0;
+  /** Modules released and not finished by ORD's count whose own records say they finished (an ack ORD had not read). */
+  readonly acks = new Map<string, EarlyAck>();
   private readonly names: string[] = [];
 
-  reset(cycle: number, firstLateNs = 0): this {
+  reset(cycle: number, firstLateNs = 0, tickT = 0): this {
     this.cycle = cycle;
     this.n = 0;
     this.firstLateNs = firstLateNs;
+    this.tickT = tickT;
+    if (this.acks.size) this.acks.clear();
     return this;
+  }
+
+  /** Whether module `name` is released in the cycle and not finished by ORD's count. */
+  has(name: string): boolean {
+    return this.slotOf(name, 0, name.length, this.n) >= 0;
+  }
+
+  /** The modules waited for, sorted (made only for a miss). */
+  sortedNames(): string[] {
+    return this.names.slice(0, this.n).sort();
   }
 
   /** The slot among the first `end` that holds the name text[from, to), or -1 (matched in place: no string made). */
@@ -228,15 +244,24 @@ class CycleWaits {
   previous = new CycleModules();
   held: string | undefined;
 
-  /** Module text[from, to) released in `cycle`, `lateNs` after its tick. */
-  released(cycle: number, text: string, from: number, to: number, lateNs: number): void {
+  /** Module text[from, to) released in `cycle`, `lateNs` after its tick, at `t`. */
+  released(cycle: number, text: string, from: number, to: number, lateNs: number, t: Ns): void {
     this.held = undefined;
     if (this.current.cycle !== cycle) {
       const p = this.previous;
       this.previous = this.current;
-      this.current = p.reset(cycle, lateNs);
+      this.current = p.reset(cycle, lateNs, t - lateNs);
     }
     this.current.addIn(text, from, to);
+  }
+
+  /** Module `module`'s own ack to ORD (or the end of its run, `how`) at `t`: noted on the cycle it is released in, if any. */
+  acked(module: string, t: Ns, how: EarlyAck['how']): void {
+    for (const c of [this.current, this.previous]) {
+      if (c.cycle < 0 || !c.has(module) || (how === 'its run finished' && c.acks.has(module))) continue;
+      c.acks.set(module, { module, sinceTickNs: t - c.tickT, how });
+      return;
+    }
   }
 
   /** Module text[from, to) finished its release of `cycle`. */
@@ -257,9 +282,11 @@ class CycleWaits {
    * longer running; `criticalDelayNs`: the miss record's CRITICAL_DELAY (a cycle ORD released with less than a tenth of
    * it left blames ORD, not its modules).
    */
-  lateOf(cycle: number, gone: ReadonlySet<string>, criticalDelayNs?: number): string {
+  lateOf(cycle: number, gone: ReadonlySet<string>, criticalDelayNs: number | undefined, missT: Ns): string {
     const c = this.current.cycle === cycle ? this.current : this.previous.cycle === cycle ? this.previous : undefined;
-    return missWaitText(this.held, c?.n ? c.text() : '', c?.firstLateNs, this.held !== undefined && gone.has(this.held), criticalDelayNs);
+    // modules whose own ack came by the deadline (tick + CRITICAL_DELAY, or when ORD told the miss) are not blamed
+    const early = c?.n && c.acks.size ? earlyFinish(c.sortedNames(), c.acks, criticalDelayNs ?? missT - c.tickT) : undefined;
+    return missWaitText(this.held, c?.n ? c.text() : '', c?.firstLateNs, this.held !== undefined && gone.has(this.held), criticalDelayNs, early);
   }
 }
 
@@ -436,6 +463,7 @@ export class MonitorModel implements MonitorView {
       if (kind === 'ord_finished') this.finishedLine(text);
       this.flows.seeScanned(text, from, to);
       const t = this.timeOf(scanned.mono);
+      if (kind === 'ack_sent') this.ackLine(text, to, t, 'its ack sent');
       if (ord) this.ordLastT = t;
       this.keepLine(t, text, from, to, textId);
       applyUnfolded(this.live, t);
@@ -448,7 +476,8 @@ export class MonitorModel implements MonitorView {
       applyHotLine(this.live, text, t, this.t0 ?? 0);
       this.flows.seeScanned(text, from, to);
       // a release: its module waited for in its cycle (the schema and cycle as applyHotLine read them)
-      if (kind === 'ord_release') this.releaseLine(text);
+      if (kind === 'ord_release') this.releaseLine(text, t);
+      else if (kind === 'run_finished') this.ackLine(text, to, t, 'its run finished');
       return true;
     }
     return false;
@@ -529,7 +558,8 @@ export class MonitorModel implements MonitorView {
   /** Folds a parsed record into `live` (and the notable ones into marks). */
   private fold(t: Ns, r: TraceRecord): void {
     if (r.kind !== 'unknown' && (r as KnownRecord).module === 'ORD') this.ordLastT = t;
-    if (r.kind === 'ord_release' || r.kind === 'ord_finished' || r.kind === 'scheduler') this.followCycles(r as KnownRecord);
+    if (r.kind === 'ord_release' || r.kind === 'ord_finished' || r.kind === 'scheduler') this.followCycles(r as KnownRecord, t);
+    if (r.kind === 'ack_sent' || r.kind === 'run_finished') this.followParsedAck(r as KnownRecord, t);
     if (r.kind === 'module_exit' || r.kind === 'module_crashed' || r.kind === 'module_started' || r.kind === 'scheduler') this.followGone(r as KnownRecord);
     if (r.kind === 'module_started') this.notePid(r as KnownRecord);
     if (NOTABLE.has(r.kind)) this.notableRecord({ t, r });
@@ -638,11 +668,31 @@ export class MonitorModel implements MonitorView {
   }
 
   /** The `ord_release` line applyHotLine just folded (hotRelease: its schema and cycle): its module (its peer) waited for in that cycle. */
-  private releaseLine(text: string): void {
+  private releaseLine(text: string, t: Ns): void {
     const { schema, cycle } = hotRelease;
     const c = scanned.comma;
     if (schema === undefined || cycle === undefined || c[4]! === c[3]! + 1) return;
-    this.waitsOf(schema)?.released(cycle, text, c[3]! + 1, c[4]!, hotRelease.lateNs);
+    this.waitsOf(schema)?.released(cycle, text, c[3]! + 1, c[4]!, hotRelease.lateNs, t);
+  }
+
+  /**
+   * An `ack_sent` or `run_finished` line that scanLine accepted (its end at `to`): a module's own
+   * ACK_FINISHED to ORD, or the end of its run with one, noted on the cycle it is released in
+   * (followAck). Read in place; the module's name made only when it acks ORD.
+   */
+  private ackLine(text: string, to: number, t: Ns, how: EarlyAck['how']): void {
+    const c = scanned.comma;
+    const detail = c[6]! + 1;
+    if (how === 'its ack sent'
+      ? !(c[4]! - c[3]! === 4 && text.startsWith('ORD', c[3]! + 1) && text.startsWith('ACK_FINISHED', detail))
+      : !text.startsWith(' ACK_FINISHED', to - 13)) return;
+    this.followAck(nameIn(text, c[1]! + 1, c[2]!), t, how);
+  }
+
+  /** Module `module`'s own ack to ORD at `t`: noted on the cycle of each followed schema it is released in. */
+  private followAck(module: string, t: Ns, how: EarlyAck['how']): void {
+    if (!this.waits.size) return;
+    for (const w of this.waits.values()) w.acked(module, t, how);
   }
 
   /**
@@ -672,12 +722,12 @@ export class MonitorModel implements MonitorView {
     return w;
   }
 
-  /** What the cycle of deadline miss `k` was still waiting for (CycleWaits.lateOf), or ''. */
-  private lateOf(k: KnownRecord): string {
+  /** What the cycle of deadline miss `k`, told at `t`, was still waiting for (CycleWaits.lateOf), or ''. */
+  private lateOf(k: KnownRecord, t: Ns): string {
     const schema = k.fields?.['schema'];
     const cycle = k.fields?.['cycle'];
     if (typeof schema !== 'string' || typeof cycle !== 'number') return '';
-    return this.waits.get(schema)?.lateOf(cycle, this.gone, missCriticalDelayNs(k.fields)) ?? '';
+    return this.waits.get(schema)?.lateOf(cycle, this.gone, missCriticalDelayNs(k.fields), t) ?? '';
   }
 
   /** Which modules are no longer running: a stuck record saying so, an exit; started again, or finished at last, it runs. */
@@ -705,7 +755,7 @@ export class MonitorModel implements MonitorView {
   }
 
   /** A parsed release, completion of a module's release, or ORD scheduler line: what the schema's cycles wait for. */
-  private followCycles(k: KnownRecord): void {
+  private followCycles(k: KnownRecord, t: Ns): void {
     const f = k.fields ?? {};
     const schema = f['schema'];
     if (typeof schema !== 'string' || !schema) return;
@@ -727,9 +777,16 @@ export class MonitorModel implements MonitorView {
     const w = this.waitsOf(schema);
     if (k.kind === 'ord_release') {
       const late = Number(f['release_ns']) - Number(f['tick_ns']);
-      w?.released(cycle, k.peer, 0, k.peer.length, Number.isFinite(late) ? late : 0);
+      w?.released(cycle, k.peer, 0, k.peer.length, Number.isFinite(late) ? late : 0, t);
     }
     else w?.finished(cycle, k.peer, 0, k.peer.length);
+  }
+
+  /** A parsed `ack_sent` (ACK_FINISHED to ORD) or `run_finished` (with ACK_FINISHED): followAck. */
+  private followParsedAck(k: KnownRecord, t: Ns): void {
+    if (k.kind === 'ack_sent' ? k.peer === 'ORD' && k.detail.startsWith('ACK_FINISHED') : / ACK_FINISHED$/.test(k.detail)) {
+      this.followAck(k.module, t, k.kind === 'ack_sent' ? 'its ack sent' : 'its run finished');
+    }
   }
 
   pushAll(records: Iterable<TraceRecord>): void {
@@ -823,7 +880,7 @@ export class MonitorModel implements MonitorView {
 
   private notableRecord(x: Timed): void {
     if (this.notable.length < this.keep) this.notable.push(x);
-    const mark = markOf(x, x.r.kind === 'ord_deadline_miss' ? this.lateOf(x.r as KnownRecord) : '');
+    const mark = markOf(x, x.r.kind === 'ord_deadline_miss' ? this.lateOf(x.r as KnownRecord, x.t) : '');
     if (mark && this.marks.length < this.maxMarks) this.marks.push(mark);
   }
 }
