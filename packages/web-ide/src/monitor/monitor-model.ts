@@ -257,11 +257,14 @@ class CycleWaits {
 
   /** Module `module`'s own ack to ORD (or the end of its run, `how`) at `t`: noted on the cycle it is released in, if any. */
   acked(module: string, t: Ns, how: EarlyAck['how']): void {
-    for (const c of [this.current, this.previous]) {
-      if (c.cycle < 0 || !c.has(module) || (how === 'its run finished' && c.acks.has(module))) continue;
-      c.acks.set(module, { module, sinceTickNs: t - c.tickT, how });
-      return;
-    }
+    if (!CycleWaits.ack(this.current, module, t, how)) CycleWaits.ack(this.previous, module, t, how);
+  }
+
+  /** The ack noted on cycle `c` if `module` is released in it and not finished (no array made: acks come at every release). */
+  private static ack(c: CycleModules, module: string, t: Ns, how: EarlyAck['how']): boolean {
+    if (c.cycle < 0 || !c.has(module)) return false;
+    if (how === 'its ack sent' || !c.acks.has(module)) c.acks.set(module, { module, sinceTickNs: t - c.tickT, how });
+    return true;
   }
 
   /** Module text[from, to) finished its release of `cycle`. */
