@@ -59,17 +59,16 @@ const REORDER = 1024;
 const ORD_RELEASE = Buffer.from('ord_release');
 const SCHEDULER = Buffer.from('scheduler');
 const MISSED_TICK = /^"?missed tick of (\S+) \(cycle (\d+)\)/;
-const RELEASE_OF = /^"?schema=(\S+) cycle=(\d+) tick_ns=(\d+)/;
 /** Schemas whose grid of ticks is followed (a run has a few; a forged log many). */
 const GRIDS_FOLLOWED = 64;
 const ORD_DEADLINE_MISS = Buffer.from('ord_deadline_miss');
 
 /** The digits after `key` (`tick_ns=`) in line[from, to), or NaN. */
 function numberAfter(line: Uint8Array, from: number, to: number, key: Buffer): number {
-  const at = Buffer.from(line.buffer, line.byteOffset + from, to - from).indexOf(key);
+  const at = indexIn(line, key, from, to);
   if (at < 0) return NaN;
   let v = 0, digits = 0;
-  for (let i = from + at + key.length; i < to; i++) {
+  for (let i = at + key.length; i < to; i++) {
     const c = line[i]!;
     if (c < 48 || c > 57) break;
     v = v * 10 + (c - 48);
@@ -79,6 +78,25 @@ function numberAfter(line: Uint8Array, from: number, to: number, key: Buffer): n
 }
 const TICK_NS = Buffer.from('tick_ns=');
 const CRITICAL_DELAY_NS = Buffer.from('critical_delay_ns=');
+const CYCLE = Buffer.from('cycle=');
+const SCHEMA = Buffer.from('schema=');
+
+/** Where `key` begins in line[from, to), or -1 (searched within the line only: the chunk it is read in goes on). */
+function indexIn(line: Uint8Array, key: Buffer, from: number, to: number): number {
+  const first = key[0]!, n = key.length;
+  for (let i = from; i + n <= to; i++) {
+    if (line[i] !== first) continue;
+    let j = 1;
+    while (j < n && line[i + j] === key[j]) j++;
+    if (j === n) return i;
+  }
+  return -1;
+}
+
+/** line[from, to) as text (a schema's name, a missed tick's line). */
+function latin1(line: Uint8Array, from: number, to: number): string {
+  return Buffer.from(line.buffer, line.byteOffset + from, to - from).toString('latin1');
+}
 
 /** Whether line[from, to) is `word`. */
 function fieldIs(line: Uint8Array, from: number, to: number, word: Buffer): boolean {
@@ -109,6 +127,8 @@ export class ThrottlingReader {
   private open: { from: number; to: number; dueFrom: number } | undefined;
   /** The line being read: its first LINE_HELD bytes. */
   private readonly line = new Uint8Array(LINE_HELD);
+  /** The first seven commas of the line being read. */
+  private readonly commas = new Int32Array(7);
   private len = 0;
   /** The most a throttled silence can last: the part of a period the budget does not give. */
   private readonly mostNs: number;
@@ -132,41 +152,54 @@ export class ThrottlingReader {
     for (let i = 0; i < n;) {
       const nl = chunk.indexOf(10, i);
       const end = nl < 0 ? n : nl;
+      if (nl >= 0 && this.len === 0) {
+        // a whole line in the chunk (the usual case): read in place
+        this.endLine(chunk, i, Math.min(end, i + LINE_HELD));
+        i = nl + 1;
+        continue;
+      }
       const take = Math.min(end - i, LINE_HELD - this.len);
       if (take > 0) {
         this.line.set(chunk.subarray(i, i + take), this.len);
         this.len += take;
       }
       if (nl < 0) return;
-      this.endLine();
+      this.endHeld();
       i = nl + 1;
     }
   }
 
-  /** The line held is complete: its record, if it is one, taken. */
-  private endLine(): void {
-    const { line, len } = this;
+  /** The line held (begun in an earlier chunk) is complete. */
+  private endHeld(): void {
+    const len = this.len;
     this.len = 0;
-    let value = 0, i = 0;
+    this.endLine(this.line, 0, len);
+  }
+
+  /** The complete line line[from, len) (its first LINE_HELD bytes): its record, if it is one, taken. */
+  private endLine(line: Uint8Array, from: number, len: number): void {
+    let value = 0, i = from;
     for (; i < len; i++) {
       const c = line[i]!;
       if (c < 48 || c > 57) break;
       value = value * 10 + (c - 48);
     }
     // a 64-bit time, past 2^53 on a machine up for 105 days: a double then rounds it to a few ns, nothing to silences of milliseconds
-    if (i === 0 || i > 19 || i >= len || line[i] !== 44 /* , */) return;
+    if (i === from || i - from > 19 || i >= len || line[i] !== 44 /* , */) return;
     // fields: mono_ns, wall_time, module, event, peer, port, size, detail
-    const commas: number[] = [i];
-    for (let j = i + 1; j < len && commas.length < 7; j++) if (line[j] === 44) commas.push(j);
+    const commas = this.commas;
+    commas[0] = i;
+    let found = 1;
+    for (let j = i + 1; j < len && found < 7; j++) if (line[j] === 44) commas[found++] = j;
     let due = Infinity;
-    if (commas.length === 7) {
+    if (found === 7) {
       const kindFrom = commas[2]! + 1, kindTo = commas[3]!, detailFrom = commas[6]! + 1;
       if (fieldIs(line, kindFrom, kindTo, ORD_RELEASE)) {
         const tick = numberAfter(line, detailFrom, len, TICK_NS);
         if (Number.isFinite(tick)) due = tick;
-        this.followGrid(Buffer.from(line.buffer, line.byteOffset + detailFrom, len - detailFrom).toString('latin1'));
+        this.followGrid(line, detailFrom, len, tick);
       } else if (fieldIs(line, kindFrom, kindTo, SCHEDULER) && line[detailFrom + (line[detailFrom] === 34 ? 1 : 0)] === 109 /* m */) {
-        due = this.missedTickDue(Buffer.from(line.buffer, line.byteOffset + detailFrom, len - detailFrom).toString('latin1'));
+        due = this.missedTickDue(latin1(line, detailFrom, len));
       } else if (fieldIs(line, kindFrom, kindTo, ORD_DEADLINE_MISS)) {
         const tick = numberAfter(line, detailFrom, len, TICK_NS), cd = numberAfter(line, detailFrom, len, CRITICAL_DELAY_NS);
         if (Number.isFinite(tick) && Number.isFinite(cd)) due = tick + cd;
@@ -176,14 +209,19 @@ export class ThrottlingReader {
     if (this.pending.size > REORDER) this.measure(this.pending.pop()!);
   }
 
-  /** An `ord_release`'s detail: its schema's grid of ticks followed. */
-  private followGrid(detail: string): void {
-    const m = RELEASE_OF.exec(detail);
-    if (!m) return;
-    const cycle = Number(m[2]), tick = Number(m[3]);
-    const g = this.grids.get(m[1]!);
+  /** An `ord_release`'s detail, line[from, to) (`schema=S cycle=k tick_ns=T ...`): its schema's grid of ticks followed. */
+  private followGrid(line: Uint8Array, from: number, to: number, tick: number): void {
+    const at = indexIn(line, SCHEMA, from, to);
+    if (at < 0 || at > from + 1) return;
+    const nameFrom = at + SCHEMA.length;
+    let space = nameFrom;
+    while (space < to && line[space] !== 32) space++;
+    const cycle = numberAfter(line, from, to, CYCLE);
+    if (space >= to || !Number.isFinite(cycle) || !Number.isFinite(tick)) return;
+    const name = latin1(line, nameFrom, space);
+    const g = this.grids.get(name);
     if (!g) {
-      if (this.grids.size < GRIDS_FOLLOWED) this.grids.set(m[1]!, { cycle, tick, periodNs: 0 });
+      if (this.grids.size < GRIDS_FOLLOWED) this.grids.set(name, { cycle, tick, periodNs: 0 });
       return;
     }
     // a later cycle of the same activation gives the period; cycle 0 again (a new activation) keeps it
@@ -229,7 +267,7 @@ export class ThrottlingReader {
    * one point of the period, and at least half of all such silences.
    */
   result(): Throttling | undefined {
-    if (this.len > 0) this.endLine();
+    if (this.len > 0) this.endHeld();
     while (this.pending.size) this.measure(this.pending.pop()!);
     this.close();
     const { bins, count } = this;
