@@ -11,10 +11,15 @@ export const MAA_MODULE = 'src-gen/generated/architecture/modules/MAA_mod/module
 
 /** .contract files and the committed src-gen sources (no build products). */
 export async function tutorialFiles(): Promise<Record<string, string>> {
+  return exampleFiles(TUTORIAL_DIR);
+}
+
+/** An example project's (examples/NAME, or `dir`) .contract files and committed src-gen sources. */
+export async function exampleFiles(dir: string): Promise<Record<string, string>> {
   const files: Record<string, string> = {};
-  const list = await listFilesNoFollow(TUTORIAL_DIR, (rel, isDir) => (isDir ? !/(^|\/)(run|logs)$/.test(rel) : rel.endsWith('.contract') || rel.startsWith('src-gen/')));
+  const list = await listFilesNoFollow(dir, (rel, isDir) => (isDir ? !/(^|\/)(run|logs)$/.test(rel) : rel.endsWith('.contract') || rel.startsWith('src-gen/')));
   for (const rel of list) {
-    const path = join(TUTORIAL_DIR, rel);
+    const path = join(dir, rel);
     if ((lstatSync(path).mode & 0o111) !== 0 || /\.(o|a|csv)$/.test(rel)) continue;
     files[rel] = readFileSync(path, 'utf8');
   }
