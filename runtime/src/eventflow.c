@@ -139,6 +139,13 @@ int GetEventId(RTIME *productionTime, RTIME *receptionTime)
         snprintf(detail, sizeof detail, "from_port=%d latency_ns=%lld", e->Param.Event.sourcePort,
                  (long long)(e->ReceptionTime - e->ProductionTime));
         ContractLog("event_received", e->Param.Event.sourceModule, port, e->DataSize, detail);
+        /* its handler runs from now until the module reads its mailbox again (mailbox.c); an
+         * engine's events are its rules', told by its own records */
+        g_rt.handling.on = g_rt.is_module;
+        g_rt.handling.port = port;
+        g_rt.handling.from_port = e->Param.Event.sourcePort;
+        g_rt.handling.since = GetTime();
+        snprintf(g_rt.handling.from, sizeof g_rt.handling.from, "%s", e->Param.Event.sourceModule);
         return port;
     }
     if (g_rt.is_module) {

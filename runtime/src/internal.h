@@ -74,6 +74,9 @@ typedef struct {
     int pending_count;
     long activations, requests;
     int running;
+    /* an event the module's handler took (GetEventId) and has not ended yet: it ends when the
+     * module reads its mailbox again (its request loop), logged then as `event_handled` */
+    struct { int on; int port, from_port; RTIME since; char from[CONTRACT_NAME_MAX]; } handling;
     char created[8][PATH_MAX]; /* files to remove at exit */
     int n_created;
     RTIME log_dirty_since;  /* 0 = nothing unflushed */

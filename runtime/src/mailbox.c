@@ -654,9 +654,23 @@ static int receive_until(RTIME deadline)
     }
 }
 
+/* The module reads its mailbox again after handling an event (its request loop's next wait or
+ * poll): the handler has ended. One record per event handled, the end of the bar the IDE's
+ * Timeline draws from its event_received. */
+static void end_event_handling(void)
+{
+    if (!g_rt.handling.on) return;
+    g_rt.handling.on = 0;
+    char d[64];
+    snprintf(d, sizeof d, "from_port=%d handling_ns=%lld", g_rt.handling.from_port,
+             (long long)(GetTime() - g_rt.handling.since));
+    ContractLog("event_handled", g_rt.handling.from, g_rt.handling.port, 0, d);
+}
+
 int WaitForRequestUntil(RequestMessage *msg, RTIME deadline)
 {
     rt_mark_ready(); /* the first time: its init is done (the launcher then sends the start) */
+    end_event_handling();
     if (pop_pending(msg)) return 1;
     int r = receive_until(deadline);
     if (r == 1) deliver(msg, &rx_buffer);

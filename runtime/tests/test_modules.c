@@ -860,6 +860,10 @@ void test_maa_events_params(void)
     CHECK(h_wait_exit(pid, 2000) == 0);
     char *log = h_read_logs("MAA_");
     CHECK(log && strstr(log, ",MAA,event_received,tester,0,256,from_port=7"));
+    /* the handler's end: written when MAA reads its mailbox again, after the reception */
+    const char *got = log ? strstr(log, ",MAA,event_received,tester,0,256,from_port=7") : NULL;
+    const char *handled = log ? strstr(log, ",MAA,event_handled,tester,0,0,from_port=7 handling_ns=") : NULL;
+    CHECK_MSG(got && handled > got, "log: %.3000s", log ? log : "(none)");
     CHECK(log && strstr(log, "event from tester:7 refused: 10 bytes for input event port 0 of 256 bytes"));
     CHECK(log && strstr(log, ",MAA,setparam,tester,0,24,"));
     CHECK(log && strstr(log, ",MAA,event_subscribed,tester,2,0,to_port=4 oneshot"));
