@@ -1,8 +1,9 @@
 /**
  * Parses the runtime's per-module CSV logs (docs/runtime-api.md: columns
  * `mono_ns,wall_time,module,event,peer,port,size,detail`) into activations: each `run_started`
- * paired with the module's next `run_finished` (fields split by the trace reader's splitCsvLine). Pure: used by
- * the timeline view and tests.
+ * paired with the module's next `run_finished`, and each event an asynchronous module handles
+ * outside a run (its `event_received` to its `event_handled`) (fields split by the trace reader's
+ * splitCsvLine). Pure: used by the timeline view and tests.
  */
 import { LogClocks, parseRecordLine, splitCsvLine, type KnownRecord } from '@contract-studio/build-service/trace';
 
@@ -12,7 +13,24 @@ export interface Activation {
   start: number;
   end?: number;
   detail: string;
+  /**
+   * Set when this is an event an asynchronous module handled while no run of it was going on (its
+   * handler, `_react_to_event`, called from its request loop): `start` is its `event_received`
+   * (GetEventId), `end` its `event_handled` (written when the module reads its mailbox again:
+   * `ended`), or, in logs of runtimes that wrote none, the last record the handler wrote (its
+   * posts, its own lines) before the module's next request, the reception when it wrote none.
+   * `records`: how many the handler wrote; `last`: the kind of the last.
+   */
+  event?: { from: string; records: number; last?: string; ended: boolean };
 }
+
+/**
+ * Records a module's handler writes while it handles an event (in a log with no `event_handled`,
+ * an older runtime's, they stretch its bar): its posts, what it reads, its own lines. Any other
+ * record of the module (the next request read, a priority changed by a request, a run, its exit)
+ * is written once it reads requests again: it ends the bar.
+ */
+const HANDLER_RECORDS = new Set(['event_posted', 'event_waited', 'data_posted', 'data_dropped', 'data_received', 'setparam_sent', 'user', 'error']);
 
 /** ORD's readable line of a schema activated or deactivated (`activate S (activation #N from SUP)`). */
 const ENGINE_SCHEMA = /^(activate|deactivate) [A-Za-z_]\w*(?: \(|$)/;
@@ -34,6 +52,8 @@ export function activationsFromCsv(text: string, file = '', unreadable?: { n: nu
   if (iMono < 0 || iModule < 0 || iEvent < 0) throw new Error('not a ContrACT CSV log (missing mono_ns/module/event columns)');
   const open = new Map<string, Activation>();
   const out: Activation[] = [];
+  // the event each module is handling now (its bar grows with the handler's records)
+  const handling = new Map<string, Activation>();
   // ORD and the supervisors serve several activations at once (every schema, every function): one
   // STOP ends one of them, not the module's activity, so their run records are not their bars; a
   // bar of theirs lasts while at least one schema is active (ORD's `scheduler` activate/deactivate
@@ -52,14 +72,15 @@ export function activationsFromCsv(text: string, file = '', unreadable?: { n: nu
       if (a && a.end === undefined) a.end = t;
     }
   };
-  // only run_started / run_finished lines, and the engines' activate/deactivate and function lines,
-  // matter (a 1 kHz run's logs are most of a million lines): with the event column between two
-  // others, such a line holds `,run_started,`, `,run_finished,`, `,scheduler,` or `,supervisor,`
+  // only run_started / run_finished / event_received lines, the engines' activate/deactivate and
+  // function lines, and the lines after an event_received until the handler's end matter (a 1 kHz
+  // run's logs are most of a million lines): with the event column between two others, such a line
+  // holds `,run_started,`, `,run_finished,`, `,event_received,`, `,scheduler,` or `,supervisor,`
   const inside = iEvent > 0 && iEvent < header.length - 1;
   const clocks = new LogClocks();
   for (let n = 1; n < lines.length; n++) {
     const l = lines[n]!;
-    if (inside && !l.includes(',run_started,') && !l.includes(',run_finished,') && !l.includes(',scheduler,') && !l.includes(',supervisor,')) continue;
+    if (inside && !handling.size && !l.includes(',run_started,') && !l.includes(',run_finished,') && !l.includes(',event_received,') && !l.includes(',scheduler,') && !l.includes(',supervisor,')) continue;
     const r = parseRecordLine(file, n + 1, l, clocks.of(recordModule(l)));
     if (r.kind === 'unknown') {
       if (unreadable) unreadable.n++;
@@ -69,12 +90,29 @@ export function activationsFromCsv(text: string, file = '', unreadable?: { n: nu
     const t = Number(k.monoNs);
     const module = k.module;
     const event = k.kind;
+    const handled = handling.get(module);
+    if (handled) {
+      if (event === 'event_handled') {
+        handled.end = Math.max(handled.end!, t);
+        handled.event!.ended = true;
+        handling.delete(module);
+        continue;
+      }
+      if (HANDLER_RECORDS.has(event)) {
+        handled.end = Math.max(handled.end!, t);
+        handled.event!.records++;
+        handled.event!.last = event;
+        continue;
+      }
+      handling.delete(module); // it reads requests again (an older runtime's log): the handler had ended
+    }
     if (event === 'scheduler' || event === 'supervisor') {
       const detail = k.detail;
       if (!engines.has(module)) {
         engines.set(module, 0);
         // its run records so far were no bars of its own
         open.delete(module);
+        handling.delete(module);
         for (let i = out.length - 1; i >= 0; i--) if (out[i]!.module === module) out.splice(i, 1);
       }
       const m = event === 'scheduler' ? ENGINE_SCHEMA.exec(detail) : ENGINE_FUNCTION.exec(detail);
@@ -91,24 +129,34 @@ export function activationsFromCsv(text: string, file = '', unreadable?: { n: nu
     } else if (event === 'run_finished') {
       const a = open.get(module);
       if (a && a.end === undefined) a.end = t;
+    } else if (event === 'event_received' && !running(open.get(module))) {
+      // an event handled outside a run (one taken during a run is inside that run's bar)
+      const a: Activation = { module, start: t, end: t, detail: `event from ${k.peer}:${k.port}`, event: { from: `${k.peer}:${k.port}`, records: 0, ended: false } };
+      handling.set(module, a);
+      out.push(a);
     }
   }
   return out.sort((a, b) => a.start - b.start);
 }
 
 /**
- * The period guess: the median gap between consecutive activations of the most active module
- * (ns), and that module (a run with loops of several periods has its grid drawn at its period).
+ * The period guess: the median gap between consecutive activations (runs, not events handled) of
+ * the most active module (ns), and that module (a run with loops of several periods has its grid drawn at its period).
  */
 export function inferPeriodOf(acts: Activation[]): { ns: number; module: string } | undefined {
   const byModule = new Map<string, number[]>();
-  for (const a of acts) (byModule.get(a.module) ?? byModule.set(a.module, []).get(a.module)!).push(a.start);
+  for (const a of acts) if (!a.event) (byModule.get(a.module) ?? byModule.set(a.module, []).get(a.module)!).push(a.start);
   let best: number[] = [];
   let module = '';
   for (const [m, starts] of byModule) if (starts.length > best.length) [best, module] = [starts, m];
   if (best.length < 3) return undefined;
   const gaps = best.slice(1).map((s, i) => s - best[i]!).sort((a, b) => a - b);
   return { ns: gaps[Math.floor(gaps.length / 2)]!, module };
+}
+
+/** A run of the module still going on (started, not finished). */
+function running(a: Activation | undefined): boolean {
+  return a !== undefined && !a.event && a.end === undefined;
 }
 
 /** The module field of a record line (the third), to key its time check; '' when none. */

@@ -1,3 +1,6 @@
+import { readdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
 import type { Activation } from './activation-log.js';
 import { firstStartingAt, laneBars, lanesOf, lastTime } from './timeline-bars.js';
@@ -73,5 +76,66 @@ describe('timeline lanes', () => {
     expect(leftOutModules).toBe(100_002 - 256);
     expect(leftOutActs).toBe(100_000 - 254);
     expect(lanesOf(acts.slice(0, 3), 256)).toMatchObject({ modules: ['MSA', 'MSC'], leftOutModules: 0, leftOutActs: 0 });
+  });
+});
+
+describe("an asynchronous module's lane: the events it handles (real records of tutorial runs)", () => {
+  const logs = (run: string) => {
+    const dir = fileURLToPath(new URL(`../monitor/fixtures/${run}`, import.meta.url));
+    return readdirSync(dir).filter((f) => f.endsWith('.csv')).map((name) => ({ name, text: readFileSync(join(dir, name), 'utf8') }));
+  };
+  /** The lane of `module`, the run drawn on 1000 px (as the view does at zoom 0), its bars in ns. */
+  const laneOf = (files: ReturnType<typeof logs>, module: string) => {
+    const { acts, errors } = activationsFromLogs(files);
+    expect(errors).toEqual([]);
+    const t0 = acts[0]!.start;
+    const span = lastTime(acts) - t0;
+    const x = (t: number) => ((t - t0) / span) * 1000;
+    const invX = (px: number) => t0 + (px / 1000) * span;
+    const { modules, lanes } = lanesOf(acts, 256);
+    const lane = lanes[modules.indexOf(module)]!;
+    return { acts, lane, bars: laneBars(lane, x, invX, t0 + span, -1000, 2000), x };
+  };
+  const csvTimes = (text: string, event: string) => text.split('\n').filter((l) => l.split(',')[3] === event).map((l) => Number(l.split(',')[0]));
+
+  it("draws each event MAB handled as a bar from its event_received to its event_handled (a 2.4 ms handler: a plan)", () => {
+    const files = logs('async-handler-run');
+    const mab = files.find((f) => f.name.startsWith('MAB'))!.text;
+    const received = csvTimes(mab, 'event_received');
+    const handled = csvTimes(mab, 'event_handled');
+    expect(received.length).toBeGreaterThanOrEqual(3);
+    expect(handled).toHaveLength(received.length);
+    const { lane, bars, x } = laneOf(files, 'MAB');
+    const events = lane.filter((a) => a.event);
+    // a bar per event handled, from its reception to its end, as the log says them
+    expect(events.map((a) => [a.start, a.end])).toEqual(received.map((t, i) => [t, handled[i]]));
+    for (const a of events) {
+      expect(a.event).toMatchObject({ from: 'MAA:0', ended: true });
+      expect(a.end! - a.start).toBeGreaterThanOrEqual(2_400_000); // the handler's 2.4 ms, not a sliver
+    }
+    // drawn at the event times, apart (they are 250 ms apart): not one sliver at the start
+    const eventBars = bars.filter((b) => b.first.event);
+    expect(eventBars.map((b) => b.x1)).toEqual(received.map((t) => x(t)));
+    expect(eventBars.every((b) => b.count === 1)).toBe(true);
+    // MAB's START run is the sliver at its start, and the only activation the period guess could count
+    expect(lane.filter((a) => !a.event)).toHaveLength(1);
+  });
+
+  it("in logs of a runtime that wrote no event_handled, ends a bar at the handler's last record, the reception when it wrote none", () => {
+    const files = logs('tutorial-run');
+    const mab = files.find((f) => f.name.startsWith('MAB'))!.text;
+    const received = csvTimes(mab, 'event_received');
+    expect(received).toHaveLength(4);
+    const { lane, bars, x } = laneOf(files, 'MAB');
+    expect(lane.filter((a) => a.event).map((a) => [a.start, a.end, a.event!.ended])).toEqual(received.map((t) => [t, t, false]));
+    expect(bars.filter((b) => b.first.event).map((b) => b.x1)).toEqual(received.map((t) => x(t)));
+    // a handler that posts: its bar lasts to its last post, and the next request read ends it
+    const header = 'mono_ns,wall_time,module,event,peer,port,size,detail';
+    const pln = [header, '1000,w,PLN,run_started,SUP,,0,activation=1', '1100,w,PLN,run_finished,,,0,activation=1',
+      '5000,w,PLN,request_received,SUP,2,8,EVENT from_port=2', '5010,w,PLN,event_received,SUP,2,8,from_port=2 latency_ns=900',
+      '7410,w,PLN,event_posted,CTL,0,64,to_port=0', '9000,w,PLN,priority_changed,SUP,,0,"nice 13 (priority 30, was 30)"',
+      '9100,w,PLN,request_received,SUP,2,8,EVENT from_port=2'].join('\n');
+    const acts = activationsFromLogs([{ name: 'PLN.csv', text: pln }]).acts.filter((a) => a.event);
+    expect(acts.map((a) => [a.start, a.end, a.event!.records, a.event!.last])).toEqual([[5010, 7410, 1, 'event_posted']]);
   });
 });

@@ -222,7 +222,7 @@ export class TimelineView {
       const made: SVGElement[] = [];
       lanes.forEach((laneActs, i) => {
         for (const b of laneBars(laneActs, x, invX, tEnd, from, to)) {
-          const bar = svg('rect', { x: b.x1, y: i * lane + 5, width: b.x2 - b.x1, height: lane - 10, rx: 2, class: `act-bar${b.open ? ' open' : ''}${b.count > 1 ? ' many' : ''}` });
+          const bar = svg('rect', { x: b.x1, y: i * lane + 5, width: b.x2 - b.x1, height: lane - 10, rx: 2, class: `act-bar${b.open ? ' open' : ''}${b.count > 1 ? ' many' : ''}${b.first.event && b.last.event ? ' event' : ''}` });
           bar.append(svg('title', {}, barTitle(b, t0)));
           made.push(bar);
         }
@@ -232,7 +232,8 @@ export class TimelineView {
     };
     root.append(axis);
     const leftOut = leftOutModules ? ` · ${leftOutModules} more modules named in the logs, past the ${MAX_LANES} lanes shown (${leftOutActs} activations left out: did a module's code write into its log?)` : '';
-    this.info.textContent = `${acts.length} activations · ${modules.length} modules${leftOut} · ${(span / 1e6).toFixed(1)} ms${periodOf ? ` · period ≈ ${(periodOf.ns / 1e6).toFixed(2)} ms (of ${periodOf.module}: the grid's #k)` : ''}${errors.length ? ` · left out or not whole: ${errors.slice(0, 8).join('; ')}${errors.length > 8 ? `; ${errors.length - 8} more` : ''}` : ''}`;
+    const events = acts.reduce((n, a) => n + (a.event ? 1 : 0), 0);
+    this.info.textContent = `${acts.length - events} activations · ${modules.length} modules${events ? ` · ${events} events handled` : ''}${leftOut} · ${(span / 1e6).toFixed(1)} ms${periodOf ? ` · period ≈ ${(periodOf.ns / 1e6).toFixed(2)} ms (of ${periodOf.module}: the grid's #k)` : ''}${errors.length ? ` · left out or not whole: ${errors.slice(0, 8).join('; ')}${errors.length > 8 ? `; ${errors.length - 8} more` : ''}` : ''}`;
     this.canvas.replaceChildren(root);
     // drawn once the svg is in place: a zoom keeps the scroll position, clamped to the new width
     drawBars();
@@ -243,7 +244,20 @@ export class TimelineView {
 function barTitle(b: LaneBar, t0: number): string {
   const ms = (t: number) => `${((t - t0) / 1e6).toFixed(3)} ms`;
   const a = b.first;
+  if (b.count === 1 && a.event) return `${a.module} handled an event from ${a.event.from} at ${ms(a.start)}: ${handlerEnd(a)}`;
   if (b.count === 1) return `${a.module} ${ms(a.start)} → ${a.end !== undefined ? `${((a.end - a.start) / 1e6).toFixed(3)} ms` : 'running'} ${a.detail}`;
   const end = b.last.end;
-  return `${a.module}: ${b.count} activations from ${ms(a.start)} to ${end !== undefined ? ms(end) : `${ms(b.last.start)} (running)`} (zoom in to see each)`;
+  const what = b.first.event && b.last.event ? 'events handled' : 'activations';
+  return `${a.module}: ${b.count} ${what} from ${ms(a.start)} to ${end !== undefined ? ms(end) : `${ms(b.last.start)} (running)`} (zoom in to see each)`;
+}
+
+/** What the records say of an event handler's end. */
+function handlerEnd(a: Activation): string {
+  const e = a.event!;
+  const took = `${((a.end! - a.start) / 1e6).toFixed(3)} ms`;
+  const wrote = e.records ? `, ${e.records} record(s) written` : '';
+  if (e.ended) return `handled in ${took}${wrote}`;
+  // a log of a runtime that wrote no event_handled: the handler's own records bound it
+  if (!e.records) return 'its end is not in the log (no event_handled, no record of the handler): the bar marks the reception';
+  return `its end is not in the log (no event_handled): its handler's last record (${e.last}${wrote}) ${took} later`;
 }
