@@ -8,6 +8,24 @@ import type { RuleChange, SimTraceRecord, StepRecord, StepResult } from '@contra
 
 /** One entry of the workspace tree (GET /api/tree, /api/snapshot). */
 /** A job the IDE server announces to its tabs on /api/events (`job`, `jobs`: server/shared-runs.ts). */
+/**
+ * A recent Build & Run job of the workspace (`GET /api/recent-runs`: the build service's listing of the
+ * IDE server's jobs), for the Monitor's run list of every tab.
+ */
+export interface RecentRun {
+  id: string;
+  /** The project folder, relative to the workspace ('' = the workspace itself). */
+  project: string;
+  /** The build service's status: queued, preparing, building, running, succeeded, failed, cancelled. */
+  status: string;
+  /** When it was submitted and when it ended (ms since the epoch; null while it goes on). */
+  createdAt: number;
+  finishedAt: number | null;
+  /** Its result (null until it ended): ok, and the service's message. */
+  ok: boolean | null;
+  message: string | null;
+}
+
 export interface SharedJob {
   id: string;
   action: 'build' | 'run';

@@ -145,6 +145,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
         if (!token.presented(req)) throw new HttpError(401, NO_SESSION, { code: 'unauthorized' });
         if (BUILD_ROUTES.test(url.pathname)) {
           if (!build) throw new HttpError(503, buildServiceNote);
+          runs?.claim(req, url.pathname); // a job submitted through the IDE is listed by /api/recent-runs
           if (await build.handle(req, res)) return;
           throw new HttpError(404, `no such build service route: ${url.pathname}`);
         }
@@ -192,6 +193,11 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
         versions[p] = read.version;
       }
       sendJson(res, 200, { workspace: paths.root, name: basename(paths.root), root: paths.root, entries, files, versions });
+      return true;
+    }
+    if (route === 'GET /api/recent-runs') {
+      // the Monitor's run list in every tab: this workspace's last Build & Run jobs the build service keeps
+      sendJson(res, 200, { jobs: runs ? runs.recent() : [] });
       return true;
     }
     if (route === 'GET /api/info') {

@@ -58,8 +58,9 @@ async function listen(): Promise<Listener> {
 
 const named = (l: Listener, name: string) => l.events.filter((e) => e.event === name).map((e) => e.data);
 
-async function submit(project: unknown): Promise<string> {
-  const r = await fetch(`${ide.url}/api/jobs`, { method: 'POST', headers: headers(), body: JSON.stringify({ action: 'run', kind: 'make', sandbox: 'bwrap', project }) });
+async function submit(project: unknown, opts: { action?: 'build' | 'run'; client?: string } = {}): Promise<string> {
+  const head = { ...headers(), ...(opts.client ? { 'x-contract-client': opts.client } : {}) };
+  const r = await fetch(`${ide.url}/api/jobs`, { method: 'POST', headers: head, body: JSON.stringify({ action: opts.action ?? 'run', kind: 'make', sandbox: 'bwrap', project }) });
   expect(r.status, await r.clone().text()).toBe(201);
   return ((await r.json()) as { id: string }).id;
 }
@@ -107,4 +108,33 @@ describe('runs shared by the tabs of the IDE', () => {
     expect(named(during, 'job')).toEqual([]);
     for (const l of [first, during, after]) l.close();
   }, 120_000);
+
+  it("lists the workspace's recent Build & Run jobs the build service keeps, newest first: not a build, not inline files, not a job a client submitted with its own key", async () => {
+    const older = await submit({ dir: join(base, 'robot') });
+    expect(await finished(older)).toBe('succeeded');
+    const build = await submit({ dir: join(base, 'robot') }, { action: 'build' });
+    const script = await submit({ dir: join(base, 'robot') }, { client: 'a-script-of-its-own-0123456789' });
+    const inline = await submit({ files: { Makefile: MAKEFILE, 'main.c': MAIN } });
+    for (const id of [build, script, inline]) expect(await finished(id)).toBe('succeeded');
+    const newer = await submit({ dir: join(base, 'robot') });
+    await expect.poll(async () => (await (await fetch(`${ide.url}/api/jobs/${newer}`, { headers: headers() })).json() as { status: string }).status, { timeout: 60_000 }).toBe('running');
+    const list = async () => ((await (await fetch(`${ide.url}/api/recent-runs`, { headers: headers() })).json()) as { jobs: Array<Record<string, unknown>> }).jobs;
+    const during = await list();
+    const ids = during.map((j) => j.id);
+    expect(ids.indexOf(newer)).toBe(0);
+    expect(ids).toContain(older);
+    expect(ids.indexOf(older)).toBeGreaterThan(0);
+    for (const id of [build, script, inline]) expect(ids).not.toContain(id);
+    expect(during[0]).toMatchObject({ id: newer, project: 'robot', status: 'running', finishedAt: null, ok: null, message: null });
+    expect(during.find((j) => j.id === older)).toMatchObject({ project: 'robot', status: 'succeeded', ok: true });
+    expect(await finished(newer)).toBe('succeeded');
+    expect((await list())[0]).toMatchObject({ id: newer, status: 'succeeded', ok: true });
+    // the IDE server's key is its own: a client without one lists nothing from the service, the script its own job
+    const anonymous = (await (await fetch(`${ide.url}/api/jobs`, { headers: headers() })).json()) as { jobs: unknown[] };
+    expect(anonymous.jobs).toEqual([]);
+    const own = (await (await fetch(`${ide.url}/api/jobs`, { headers: { ...headers(), 'x-contract-client': 'a-script-of-its-own-0123456789' } })).json()) as { jobs: Array<{ id: string }> };
+    expect(own.jobs.map((j) => j.id)).toEqual([script]);
+    // a session is needed
+    expect((await fetch(`${ide.url}/api/recent-runs`)).status).toBe(401);
+  }, 180_000);
 });

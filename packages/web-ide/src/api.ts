@@ -1,5 +1,5 @@
 /** Typed client of the IDE server's HTTP API (see server/file-api.ts and server/ide-server.ts). */
-import type { FileReadResponse, FolderContents, FileWriteResponse, GenerateResponse, LogFolderListing, RenameEntityResponse, SimulateResponse, StaleSaveDetails, TreeEntry } from '../server/api-types.js';
+import type { FileReadResponse, FolderContents, RecentRun, FileWriteResponse, GenerateResponse, LogFolderListing, RenameEntityResponse, SimulateResponse, StaleSaveDetails, TreeEntry } from '../server/api-types.js';
 
 export type { TreeEntry, FileWriteResponse, FileReadResponse, StaleSaveDetails };
 /** What POST /api/generate answers: codegen's report, the src-gen folder and the time taken. */
@@ -185,6 +185,8 @@ export const api = {
   snapshot: () => call<Snapshot>('GET', '/api/snapshot'),
   info: () => call<{ workspace: string; name: string; buildService: string; buildAvailable: boolean }>('GET', '/api/info'),
   tree: () => call<{ root: string; entries: TreeEntry[] }>('GET', '/api/tree'),
+  /** The workspace's last Build & Run jobs the build service keeps, newest first (the Monitor's run list). */
+  recentRuns: () => call<{ jobs: RecentRun[] }>('GET', '/api/recent-runs'),
   read: (path: string) => call<FileReadResponse>('GET', `/api/file?path=${q(path)}`),
   /** A run's CSV log in the workspace, for a replay (up to 256 MiB, where `read` stops at 8 MiB; `maxBytes`: not downloaded beyond). */
   readLog,

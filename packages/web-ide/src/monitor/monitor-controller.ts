@@ -25,6 +25,7 @@ import { api, socketUrl } from '../api.js';
 import { MonitorModel } from './monitor-model.js';
 import { recordedRunSteps, type RecordedRun } from './recorded-run.js';
 import { recordedRunsToLetGo } from './recorded-runs.js';
+import { recentEntry, recentRunsOf, type RecentEntry } from './recent-runs.js';
 import { applyFolderLauncherLines, applyLauncherLines } from './job-launcher-lines.js';
 import type { MonitorView } from './model-view.js';
 import { RemoteMonitorModel } from './remote-model.js';
@@ -80,6 +81,11 @@ export class MonitorController {
   private panel: MonitorPanel | undefined;
   /** Jobs' recorded runs let go (recorded-runs.ts): id -> their label; fetched again when picked. */
   private readonly letGo = new Map<string, string>();
+  /**
+   * The workspace's recent Build & Run jobs the build service keeps (recent-runs.ts), by entry id
+   * (`job:ID`): offered in the run list of every tab, read from the service when picked.
+   */
+  private recent = new Map<string, RecentEntry>();
   private uses = 0;
   private readonly runs = new Map<string, Run>();
   private shown: string | undefined;
@@ -113,6 +119,10 @@ export class MonitorController {
     deps.button.addEventListener('click', () => (this.panel && deps.editors.docked === this.panel.element ? this.hide() : void this.show()));
     deps.build.onStarted.on(({ jobId, action }) => {
       if (action === 'run') this.followLive(jobId);
+    });
+    // the recent jobs, read again when a job of this tab ends (its entry then says how)
+    deps.build.onFinished.on(() => {
+      if (this.panel) void this.loadRecent();
     });
     // the language server built the model, or built it again after an edit: the panel reads its
     // schemas and the rules' places again (a panel made before the server was ready, by a Build &
@@ -152,14 +162,14 @@ export class MonitorController {
    * itself (`url`: GET /api/jobs/:id/ws?trace=launcher), or that is fed by `feed` (url null: tests),
    * and shows it. The page's main thread only draws: it decodes and folds nothing.
    */
-  followLive(jobId: string, url: string | null = socketUrl(`/api/jobs/${encodeURIComponent(jobId)}/ws?trace=launcher`)): RemoteMonitorModel {
+  followLive(jobId: string, url: string | null = socketUrl(`/api/jobs/${encodeURIComponent(jobId)}/ws?trace=launcher`), project = this.deps.project()): RemoteMonitorModel {
     this.runs.delete(`job:${jobId}`);
     this.forget(`live:${jobId}`);
     const worker = new Worker(new URL('./live-follow.worker.ts', import.meta.url), { type: 'module' });
     this.picked++;
     const model = new RemoteMonitorModel(worker, url, { measure: this.measure });
     worker.addEventListener('error', (e) => model.fail(`the live trace's worker failed (${e.message || 'it could not start'}): the run is shown from its CSV logs when it ends`));
-    const run: Run = { id: `live:${jobId}`, label: liveRunLabel(jobId), model, live: true, project: this.deps.project() };
+    const run: Run = { id: `live:${jobId}`, label: liveRunLabel(jobId), model, live: true, project };
     let problems = 0;
     let missed = 0;
     model.onChange = () => {
@@ -262,7 +272,7 @@ export class MonitorController {
     if (before !== panel.element) this.previous = before; // the docked diagram comes back when the Monitor is hidden
     this.deps.editors.dock(panel.element);
     this.deps.button.setAttribute('aria-pressed', 'true');
-    await this.refreshSources();
+    await this.loadRecent();
     const pick = id ?? this.shown ?? [...this.runs.keys()].pop();
     if (pick) await this.select(pick);
   }
@@ -315,14 +325,14 @@ export class MonitorController {
   }
 
   /** Job `jobId`'s recorded run from its CSV logs, kept (and the least used recorded runs let go past the bounds). */
-  private async recordedJobRun(jobId: string, logs: RunLogs, outcome?: string): Promise<Run> {
+  private async recordedJobRun(jobId: string, logs: RunLogs, outcome?: string, recentProject?: string): Promise<Run> {
     const { model, leftOut: unread } = await recordedRun(logs.files);
     // the launcher's lines saying how its modules ended: a module killed from outside shown gone, as live
     applyLauncherLines(model, logs.files, logs.launcherLines);
     // a log the service left out or capped, one that could not be downloaded, or the rest of one
     // that is not a trace is said: the replay lacks it
     const problems = [...logs.problems, ...unread];
-    const project = this.runs.get(`live:${jobId}`)?.project ?? this.runs.get(`job:${jobId}`)?.project ?? this.deps.project();
+    const project = this.runs.get(`live:${jobId}`)?.project ?? this.runs.get(`job:${jobId}`)?.project ?? recentProject ?? this.deps.project();
     const run: Run = { id: `job:${jobId}`, label: csvLogsRunLabel(jobId, problems, outcome, recordCounts(model), logs.crashSites), model, live: false, whole: true, outcome, project };
     this.keepRecorded(run);
     return run;
@@ -342,16 +352,18 @@ export class MonitorController {
   }
 
   /** A job's recorded run that was let go, picked again: its logs fetched again from the build service. */
-  private async fetchAgain(id: string): Promise<void> {
+  private async fetchAgain(id: string, recent?: RecentEntry): Promise<void> {
     const mine = ++this.picked;
     const jobId = id.slice(4);
     try {
+      if (recent) await this.reading(`the CSV logs of Build & Run job ${jobId}`);
       const logs = await fetchJobLogs(jobId);
-      if (!logs.files.length) throw new Error('the build service has no CSV logs of it any more');
-      await this.recordedJobRun(jobId, logs);
+      if (!logs.files.length) throw new Error(recent ? `it left no CSV logs${recent.outcome ? ` (ended: ${recent.outcome})` : ''}` : 'the build service has no CSV logs of it any more');
+      await this.recordedJobRun(jobId, logs, recent?.outcome, recent?.project);
     } catch (e) {
       this.letGo.delete(id);
-      toast('warning', `Build & Run job ${jobId}: its logs could not be read again (${(e as Error).message}); the build service keeps its last 50 jobs`);
+      this.recent.delete(id);
+      toast('warning', `Build & Run job ${jobId}: its logs could not be read${recent ? '' : ' again'} (${(e as Error).message}); the build service keeps its last 50 jobs`);
       await this.refreshSources();
       return;
     }
@@ -533,6 +545,10 @@ export class MonitorController {
     if (id.startsWith('dir:') && (reread || !this.runs.has(id))) return this.openFolder(id.slice(4));
     if (id.startsWith('file:') && (reread || !this.runs.has(id))) return this.openTraceFile(id.slice(5));
     if (this.letGo.has(id) && !this.runs.has(id)) return this.fetchAgain(id);
+    const recent = this.runs.has(id) ? undefined : this.recent.get(id);
+    // a job of the list still going: followed live (its stream from its first record), else its CSV logs read
+    if (recent && recent.outcome === undefined) return void this.followLive(recent.jobId, undefined, recent.project);
+    if (recent) return this.fetchAgain(id, recent);
     const run = this.runs.get(id);
     const panel = await this.ensurePanel();
     if (!run) return;
@@ -548,11 +564,37 @@ export class MonitorController {
     const panel = await this.ensurePanel();
     const options: SourceOption[] = [...this.runs.values()].map((r) => ({ id: r.id, label: r.label }));
     for (const [id, label] of this.letGo) if (!this.runs.has(id)) options.push({ id, label });
+    for (const [id, entry] of this.recent) if (!this.knows(entry.jobId)) options.push({ id, label: entry.label });
     const folders = [...new Set(this.deps.workspace.allFiles().filter((f) => isLogFileName(f.slice(f.lastIndexOf('/') + 1))).map(dirOf))].sort();
     for (const f of folders) if (!this.runs.has(`dir:${f}`)) options.push({ id: `dir:${f}`, label: `Workspace logs: ${f || '(root)'}` });
     const traceFiles = this.deps.workspace.allFiles().filter((f) => f.endsWith('.jsonl')).sort().slice(0, MAX_FILES);
     for (const f of traceFiles) if (!this.runs.has(`file:${f}`)) options.push({ id: `file:${f}`, label: `Trace file: ${f}` });
     panel.setSources(options, this.shown);
+  }
+
+  /**
+   * The workspace's recent Build & Run jobs, read again from the IDE server (GET /api/recent-runs)
+   * and offered in the run list; a job the build service no longer keeps leaves it. A failed
+   * request keeps the list as it was.
+   */
+  private async loadRecent(): Promise<void> {
+    try {
+      const now = Date.now();
+      this.recent = new Map(recentRunsOf(await api.recentRuns()).map((r) => [`job:${r.id}`, recentEntry(r, now)]));
+    } catch {
+      /* no build service, or the server away a moment: the list stays as it was */
+    }
+    await this.refreshSources();
+  }
+
+  /**
+   * Whether job `jobId` is in the run list already as this tab's: its CSV logs' run (or that run let
+   * go), or its live run that is going on or has all its records (a live run that ended without
+   * them leaves the job's listed entry, which reads its CSV logs).
+   */
+  private knows(jobId: string): boolean {
+    const live = this.runs.get(`live:${jobId}`);
+    return this.runs.has(`job:${jobId}`) || this.letGo.has(`job:${jobId}`) || (!!live && (live.live || !!live.whole));
   }
 
   /**
