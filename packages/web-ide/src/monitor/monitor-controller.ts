@@ -86,6 +86,8 @@ export class MonitorController {
    * (`job:ID`): offered in the run list of every tab, read from the service when picked.
    */
   private recent = new Map<string, RecentEntry>();
+  /** Jobs of that list picked while they ran, followed live here: their CSV logs are read from their entry once they ended. */
+  private readonly followedFromList = new Set<string>();
   private uses = 0;
   private readonly runs = new Map<string, Run>();
   private shown: string | undefined;
@@ -217,7 +219,8 @@ export class MonitorController {
     run.label = endedRunLabel(run.label, run.live, outcome);
     run.live = false;
     if (this.shown === run.id) this.panel?.endLive(run.label, run.whole);
-    void this.refreshSources();
+    // a job picked in the list while it ran: its entry, now saying how it ended, reads its CSV logs
+    void (this.followedFromList.has(run.id.slice(5)) ? this.loadRecent() : this.refreshSources());
   }
 
   /**
@@ -547,7 +550,11 @@ export class MonitorController {
     if (this.letGo.has(id) && !this.runs.has(id)) return this.fetchAgain(id);
     const recent = this.runs.has(id) ? undefined : this.recent.get(id);
     // a job of the list still going: followed live (its stream from its first record), else its CSV logs read
-    if (recent && recent.outcome === undefined) return void this.followLive(recent.jobId, undefined, recent.project);
+    if (recent && recent.outcome === undefined) {
+      this.followedFromList.add(recent.jobId);
+      this.followLive(recent.jobId, undefined, recent.project);
+      return;
+    }
     if (recent) return this.fetchAgain(id, recent);
     const run = this.runs.get(id);
     const panel = await this.ensurePanel();
@@ -589,12 +596,13 @@ export class MonitorController {
 
   /**
    * Whether job `jobId` is in the run list already as this tab's: its CSV logs' run (or that run let
-   * go), or its live run that is going on or has all its records (a live run that ended without
-   * them leaves the job's listed entry, which reads its CSV logs).
+   * go), or its live run — the tab's own job, whose CSV logs the tab reads when it ends, or a job
+   * picked in the list while it ran, until it ended: its listed entry then reads its CSV logs.
    */
   private knows(jobId: string): boolean {
     const live = this.runs.get(`live:${jobId}`);
-    return this.runs.has(`job:${jobId}`) || this.letGo.has(`job:${jobId}`) || (!!live && (live.live || !!live.whole));
+    if (this.runs.has(`job:${jobId}`) || this.letGo.has(`job:${jobId}`)) return true;
+    return !!live && (live.live || !this.followedFromList.has(jobId));
   }
 
   /**
