@@ -13,6 +13,8 @@
  * and the modules; then every other module gets its KILL request. A stop by a signal under
  * $CONTRACT_STOP_BUDGET_MS fits those waits in that budget (stop_waits). $CONTRACT_END_BY_S: a
  * run with a --duration stops that long after the launch at the latest (end_by_deadline).
+ * $CONTRACT_OUTPUT_LIMIT_BYTES: past that many bytes written on its stdout (or stderr), the
+ * modules' lines for it are read and dropped, not relayed (the reader cuts there: emit_line).
  *   contract-launch --kill RUN_DIR
  *
  * Exit status: 0 all modules ran and stopped cleanly; 1 a module crashed (named on stderr);
@@ -146,17 +148,21 @@ static void write_own_line(const char *fmt, va_list ap)
 }
 
 static void say(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+static void relay_flush_all(void);
+static long long written[2]; /* bytes the launcher wrote on its stdout and stderr (emit_line, say) */
 static void say(const char *fmt, ...)
 {
+    relay_flush_all(); /* the modules' lines relayed before come out before this one */
     va_list ap, again;
     va_start(ap, fmt);
     va_copy(again, ap);
-    fprintf(stderr, "contract-launch: ");
-    vfprintf(stderr, fmt, ap);
+    int n = fprintf(stderr, "contract-launch: ");
+    int m = vfprintf(stderr, fmt, ap);
     fputc('\n', stderr);
     write_own_line(fmt, again);
     va_end(again);
     va_end(ap);
+    written[1] += (n > 0 ? n : 0) + (m > 0 ? m : 0) + 1;
 }
 
 /* Opens the lines file in `log_dir`, emptied (the run before's was moved to previous/ by make run
@@ -367,18 +373,58 @@ static int kill_mode(const char *dir)
 
 /* ------------------------------------------------------------------ output */
 
+/* The modules' lines relayed to the launcher's stdout (0) and stderr (1), gathered and written in
+ * blocks rather than one write each: the run's reader (the build service reads a socket whose
+ * buffer is charged per write, a few hundred lines of a flood at a time when each is one write)
+ * then takes a module's flood at the speed of its reads, and a module printing past the run's
+ * output limit is not held by the relay. Written out at the end of each read of a module's output
+ * (pump), before each of the launcher's own lines (say) and when full: lines keep their order. */
+#define RELAY_BLOCK (64 * 1024)
+static struct { char data[RELAY_BLOCK]; size_t len; } relay[2];
+
+/* CONTRACT_OUTPUT_LIMIT_BYTES (the build service's outputBytesPerStream; 0: none): the reader keeps
+ * that much of each stream and cuts the rest. Once the launcher itself has written that much on a
+ * stream (its reader has then seen at least as much: make's lines come before), the modules' lines
+ * for that stream are read and dropped here, not relayed to be dropped there: a module printing
+ * past the limit is drained at the speed of the launcher's reads and keeps its period. The
+ * launcher's own lines go on. */
+static long long output_limit;
+
+/* Writes what stream `k`'s block holds (what the reader refuses, EPIPE, is dropped). */
+static void relay_flush(int k)
+{
+    size_t done = 0;
+    while (done < relay[k].len) {
+        ssize_t w = write(k ? STDERR_FILENO : STDOUT_FILENO, relay[k].data + done, relay[k].len - done);
+        if (w < 0 && errno == EINTR) continue;
+        if (w <= 0) break;
+        done += (size_t)w;
+    }
+    relay[k].len = 0;
+}
+
+static void relay_flush_all(void)
+{
+    relay_flush(0);
+    relay_flush(1);
+}
+
 /* `[NAME] ` and line `text` (its bytes as they are: a NUL among them too) to stream `k` (0: the
- * launcher's stdout, 1: its stderr), in one write so that lines of different modules never interleave. */
+ * launcher's stdout, 1: its stderr), whole in one block so that lines of different modules never interleave. */
 static void emit_line(const Child *c, int k, const char *text, size_t len)
 {
-    char buf[LINE_MAX_LEN + CONTRACT_NAME_MAX + 8];
-    int head = snprintf(buf, sizeof buf, "[%s] ", c->name);
-    if (head < 0) return;
-    if ((size_t)head + len + 1 > sizeof buf) len = sizeof buf - (size_t)head - 1;
-    memcpy(buf + head, text, len);
-    buf[(size_t)head + len] = '\n';
-    ssize_t w = write(k ? STDERR_FILENO : STDOUT_FILENO, buf, (size_t)head + len + 1);
-    (void)w;
+    char head[CONTRACT_NAME_MAX + 4];
+    int hl = snprintf(head, sizeof head, "[%s] ", c->name);
+    if (hl < 0) return;
+    if (len > LINE_MAX_LEN) len = LINE_MAX_LEN;
+    if (output_limit > 0 && written[k] >= output_limit) return;
+    written[k] += hl + (long long)len + 1;
+    if (relay[k].len + (size_t)hl + len + 1 > sizeof relay[k].data) relay_flush(k);
+    char *at = relay[k].data + relay[k].len;
+    memcpy(at, head, (size_t)hl);
+    memcpy(at + hl, text, len);
+    at[(size_t)hl + len] = '\n';
+    relay[k].len += (size_t)hl + len + 1;
 }
 
 /* ------------------------------------------------------------------ crash file */
@@ -456,6 +502,7 @@ static void close_output(Child *c, int k)
     Output *o = &c->out[k];
     if (o->fd < 0) return;
     if (o->len) { note_crash_line(c, k, o->line, o->len); emit_line(c, k, o->line, o->len); o->len = 0; }
+    relay_flush_all();
     close(o->fd);
     o->fd = -1;
     if (k == 1) save_crash(c);
@@ -466,7 +513,7 @@ static void close_output(Child *c, int k)
 static void pump(Child *c, int k)
 {
     Output *o = &c->out[k];
-    char buf[4096];
+    static char buf[16384];
     ssize_t n = read(o->fd, buf, sizeof buf);
     if (n < 0 && (errno == EINTR || errno == EAGAIN)) return;
     if (n <= 0) { close_output(c, k); return; }
@@ -479,6 +526,7 @@ static void pump(Child *c, int k)
         }
         o->line[o->len++] = buf[i];
     }
+    relay_flush_all();
 }
 
 /* The open outputs of every module in `pfd` (`idx`: child * 2 + stream), up to `max`; how many. */
@@ -992,6 +1040,13 @@ int main(int argc, char *argv[])
         long ms = strtol(budget, &end, 10);
         if (*end || ms < 100 || ms > 60000) say("warning: CONTRACT_STOP_BUDGET_MS=%.20s is not 100..60000 (ms): the stop keeps its own waits", budget);
         else stop_budget_ns = ms * 1000000LL;
+    }
+    const char *out_limit = getenv("CONTRACT_OUTPUT_LIMIT_BYTES");
+    if (out_limit && *out_limit) {
+        char *end;
+        long long v = strtoll(out_limit, &end, 10);
+        if (*end || v < 0) say("warning: CONTRACT_OUTPUT_LIMIT_BYTES=%.20s is not a number of bytes: ignored", out_limit);
+        else output_limit = v;
     }
     const char *end_by = getenv("CONTRACT_END_BY_S");
     if (end_by && *end_by) {

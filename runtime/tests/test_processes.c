@@ -667,6 +667,65 @@ void test_launcher_end_by(void)
     h_teardown();
 }
 
+/* CONTRACT_OUTPUT_LIMIT_BYTES (the build service's output limit): past it the launcher reads a
+ * module's lines and drops them, whatever its reader does, so that a module printing past the
+ * limit is never blocked on its full pipe. Here the launcher's stdout is a pipe nobody reads (a
+ * reader that has cut the stream and is slow to drain it): the module's 200,000 lines (5 MB) go
+ * through, the run ends on time and cleanly. Before, the launcher blocked writing to that pipe,
+ * and the module with it. */
+void test_launcher_output_limit(void)
+{
+    REQUIRE(h_setup("outlimit") == 0);
+    ContractShutdown();
+    char exe_p[600], exe_c2[600], err[600], path[1024];
+    snprintf(exe_p, sizeof exe_p, "%s/P", h_bin_dir);
+    snprintf(exe_c2, sizeof exe_c2, "%s/C2", h_bin_dir);
+    snprintf(err, sizeof err, "%s/launch.err", h_work_dir);
+    snprintf(path, sizeof path, "%s/contract-launch", h_bin_dir);
+    char *argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, "--duration", "1", exe_p, exe_c2, NULL };
+    int unread[2];
+    REQUIRE(pipe(unread) == 0);
+    setenv("TMOD_END", "C2:flood", 1);
+    setenv("CONTRACT_OUTPUT_LIMIT_BYTES", "4096", 1);
+    pid_t launcher = fork();
+    if (launcher == 0) {
+        int efd = open(err, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        dup2(unread[1], 1);
+        if (efd >= 0) { dup2(efd, 2); close(efd); }
+        close(unread[0]);
+        close(unread[1]);
+        execv(path, argv);
+        _exit(127);
+    }
+    unsetenv("CONTRACT_OUTPUT_LIMIT_BYTES");
+    unsetenv("TMOD_END");
+    close(unread[1]);
+    REQUIRE(launcher > 0);
+    int code = h_wait_exit(launcher, 15000);
+    if (code == -1) { /* blocked on the unread pipe: end it and its modules for the next tests */
+        kill(launcher, SIGKILL);
+        waitpid(launcher, NULL, 0);
+        const char *names[] = { "P", "C2" };
+        for (int i = 0; i < 2; i++) {
+            char pid_file[700];
+            snprintf(pid_file, sizeof pid_file, "%s/%s.pid", h_run_dir, names[i]);
+            char *pid = h_read_file(pid_file);
+            if (pid && atol(pid) > 1) kill((pid_t)atol(pid), SIGKILL);
+            free(pid);
+        }
+    }
+    char *text = h_read_file(err);
+    CHECK_MSG(code == 0 && text && strstr(text, "[C2] C2 flood done") && strstr(text, "all modules stopped cleanly"),
+              "launcher exit %d, stderr: %s", code, text ? text : "(none)");
+    free(text);
+    /* what it wrote on stdout: the limit and the line it falls inside, no more */
+    char buf[65536];
+    ssize_t n = read(unread[0], buf, sizeof buf);
+    CHECK_MSG(n > 4096 && n < 4096 + 64, "%zd bytes on the launcher's stdout (the limit 4096 and the line it falls inside expected)", n);
+    close(unread[0]);
+    h_teardown();
+}
+
 /* The mono_ns (first column) of the first CSV line of `logs` that holds `needle`; -1 when none does. */
 static long long mono_of(const char *logs, const char *needle)
 {

@@ -36,6 +36,7 @@ void test_launcher_sigint(void);
 void test_launcher_stop_why(void);
 void test_kill_without_launcher(void);
 void test_launcher_end_by(void);
+void test_launcher_output_limit(void);
 void test_launcher_stop_budget(void);
 void test_stop_signal_at_startup(void);
 void test_launcher_placement(void);
@@ -96,6 +97,7 @@ static const TestCase ALL_TESTS[] = {
     { "launcher_stop_why", test_launcher_stop_why },
     { "kill_without_launcher", test_kill_without_launcher },
     { "launcher_end_by", test_launcher_end_by },
+    { "launcher_output_limit", test_launcher_output_limit },
     { "launcher_stop_budget", test_launcher_stop_budget },
     { "stop_signal_at_startup", test_stop_signal_at_startup },
     { "launcher_placement", test_launcher_placement },

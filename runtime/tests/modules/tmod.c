@@ -25,7 +25,8 @@
  * a SIGKILL to itself (what the kernel's OOM killer sends: not the launcher's); `outputs`: at
  * start-up, `NAME out-part ` on stdout with no line end, `NAME err line` on stderr, `NAME out-end`
  * on stdout, then `NAME nul:before<NUL>after` on stdout (the launcher keeps its streams apart and
- * a line's bytes whole). */
+ * a line's bytes whole); `flood`: at start-up, 200,000 lines `NAME flood line N` on stdout, then
+ * `NAME flood done` on stderr (past the run's output limit the launcher must drain it). */
 #define _GNU_SOURCE
 #include <libmodule/libmodule.h>
 #include <signal.h>
@@ -169,6 +170,11 @@ int ModuleMain(int argc, const char *argv[])
         memcpy(nul + n, "\0after\n", 7);
         fwrite(nul, 1, (size_t)n + 7, stdout);
         fflush(stdout);
+    }
+    if (strcmp(end_how(), "flood") == 0) {
+        for (long i = 0; i < 200000; i++) printf("%s flood line %ld\n", MODULE_NAME, i);
+        fflush(stdout);
+        fprintf(stderr, "%s flood done\n", MODULE_NAME);
     }
     /* in a session of its own from the start: the launcher's kill of the module's group at the stop cannot reach it */
     if (strcmp(end_how(), "daemon") == 0 && fork() == 0) { setsid(); sleep(8); _exit(0); }
