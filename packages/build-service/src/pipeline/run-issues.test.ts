@@ -324,4 +324,21 @@ describe('RunIssues', () => {
     expect(other.launcherExit(1)).toBeUndefined(); // not a refusal's status
     expect(other.launcherExit(2)).toMatch(/^contract-launch refused to start the run: --cpus 7/);
   });
+
+  test('failed event posts in a log are one events-lost issue per flow; those to a subscriber gone at the run\'s stop are none', () => {
+    const H = 'mono_ns,wall_time,module,event,peer,port,size,detail\n';
+    const full = '1,t,BAT,error,,,0,"EVENT request to GCS: mailbox full (Resource temporarily unavailable)"\n2,t,BAT,event_posted,GCS,0,8,to_port=1 failed\n';
+    const atStop = '3,t,BAT,error,,,0,EVENT request to GCS: unknown module (No such file or directory; the run is stopping)\n4,t,BAT,event_posted,GCS,0,8,to_port=1 failed\n';
+    const issues = (text: string) => {
+      const r = new RunIssues();
+      r.log(Buffer.from(H + text), 'BAT_7-Dec-2026-00h08m44s.csv');
+      r.artifacts({ files: [], skipped: [], runDirLeftovers: [] });
+      return r.all;
+    };
+    expect(issues(`0,t,BAT,event_posted,GCS,0,8,to_port=1\n${full}${full}${atStop}`)).toEqual([{
+      kind: 'events-lost', module: 'BAT',
+      message: '2 events BAT posted to GCS were lost (BAT:0 -> GCS:1): their posts failed (PostEvent gives up after waiting 2 s for room in GCS\'s full mailbox, at once when GCS is not running); the last: EVENT request to GCS: mailbox full (Resource temporarily unavailable)',
+    }]);
+    expect(issues(`0,t,BAT,event_posted,GCS,0,8,to_port=1\n${atStop}`)).toEqual([]);
+  });
 });

@@ -1,6 +1,6 @@
 /**
  * What went wrong in a run that did not crash (docs/build-service-api.md "Run issues"): a module
- * ORD declared stuck, a sandbox limit hit, output or CSV logs cut or left out. A run with any of
+ * ORD declared stuck, a sandbox limit hit, events lost, output or CSV logs cut or left out. A run with any of
  * them does not end `succeeded`: its result says `ok: false` and lists them in `issues`, so a
  * 4 s run of a module that never ends is never reported as a success.
  */
@@ -8,17 +8,19 @@ import { visibleText } from '@contract-studio/conventions';
 import { describeLimitHit, formatBytes, memoryHeldByFiles, type LimitHit } from '../limits.js';
 import { LOG_DIR, type RunArtifacts } from './artifacts.js';
 import { CSV_HEADER, moduleOfLog } from '../trace/parse.js';
+import { splitCsvLine } from '../trace/csv-line.js';
+import { LostEvents, lostFlowText, type PostRecordFields } from '../trace/lost-events.js';
 
 /** The end of ORD's stuck sentence for a module whose thread it saw stopped (runtime ord_stuck_cause.c). */
 const STOPPED_CAUSE = ': it is stopped (by SIGSTOP, or a debugger holds it)';
 
-export type RunIssueKind = 'module-stuck' | 'module-not-ready' | 'module-hung' | 'module-ended' | 'start-refused' | 'launcher-refused' | 'limit' | 'output-truncated' | 'log-capped' | 'log-lost' | 'log-tampered';
+export type RunIssueKind = 'module-stuck' | 'module-not-ready' | 'module-hung' | 'module-ended' | 'start-refused' | 'launcher-refused' | 'limit' | 'output-truncated' | 'events-lost' | 'log-capped' | 'log-lost' | 'log-tampered';
 
 export interface RunIssue {
   kind: RunIssueKind;
   /** One sentence for people. */
   message: string;
-  /** The module it is about (module-stuck, module-not-ready, module-hung, module-ended; start-refused: the supervisor; limit: the module the kernel killed first at the memory limit; output-truncated: the module that wrote most of the output), or the log file (log-capped, log-lost, log-tampered). */
+  /** The module it is about (module-stuck, module-not-ready, module-hung, module-ended; start-refused: the supervisor; limit: the module the kernel killed first at the memory limit; output-truncated: the module that wrote most of the output; events-lost: the producer), or the log file (log-capped, log-lost, log-tampered). */
   module?: string;
   file?: string;
 }
@@ -27,6 +29,8 @@ export interface RunIssue {
 const STUCK_LINE = /^STUCK: (([A-Za-z_]\w*) has not finished release #(\d+) after \d+ periods.*)$/;
 /** The same report in ORD's CSV log (its `scheduler` records, docs/runtime-api.md). */
 const STUCK_MARK = ',scheduler,,,0,stuck: ';
+/** A producer's record of one event post (runtime/src/eventflow.c PostEvent). */
+const EVENT_POSTED_MARK = ',event_posted,';
 const STUCK_RECORD = /,scheduler,,,0,stuck: (([A-Za-z_]\w*) has not finished release #(\d+) after \d+ periods[^\n]*?)(?: \([A-Za-z_]\w*\))?\n/g;
 
 /** A supervisor's line on stderr when the run's start request cannot start anything (runtime/src/engines/sup_main.c handle_start). */
@@ -103,6 +107,8 @@ export class RunIssues {
   private readonly collected = new Set<string>();
   /** Logs already named log-tampered (once each). */
   private readonly tampered = new Set<string>();
+  /** The events the run's producers posted that were lost (their logs' failed posts). */
+  private readonly lostEvents = new LostEvents();
   /** The disk limit stopped the run: a log may be missing because the full disk refused it. */
   private diskFull = false;
 
@@ -171,6 +177,7 @@ export class RunIssues {
    */
   log(data: Buffer, file?: string): void {
     if (file !== undefined) this.logShape(data, file);
+    this.lostEventsOf(data);
     // line by line, never the whole log as one string: a log may be larger than a string can be (RUN_LOG_MAX_BYTES)
     for (let at = data.indexOf(STUCK_MARK); at >= 0;) {
       const start = data.lastIndexOf(10, at) + 1;
@@ -178,6 +185,29 @@ export class RunIssues {
       const end = nl < 0 ? data.length : nl + 1;
       for (const m of data.toString('utf8', start, end).matchAll(STUCK_RECORD)) this.stuck(m[2]!, m[3]!, m[1]!);
       at = data.indexOf(STUCK_MARK, end);
+    }
+  }
+
+  /**
+   * The failed posts of a log (`event_posted ... failed`, each with the runtime's `error` record
+   * just before it, lost-events.ts): read line by line where the mark is, never the whole log.
+   */
+  private lostEventsOf(data: Buffer): void {
+    const record = (start: number, end: number): PostRecordFields | undefined => {
+      const f = splitCsvLine(data.toString('utf8', start, Math.min(end, start + 2048)).replace(/\r?\n$/, ''));
+      return f.length >= 8 ? { module: f[2]!, kind: f[3]!, peer: f[4]!, port: f[5]!, detail: f.slice(7).join(',') } : undefined;
+    };
+    for (let at = data.indexOf(EVENT_POSTED_MARK); at >= 0;) {
+      const start = data.lastIndexOf(10, at) + 1;
+      const nl = data.indexOf(10, at);
+      const end = nl < 0 ? data.length : nl + 1;
+      at = data.indexOf(EVENT_POSTED_MARK, end);
+      const post = record(start, end);
+      if (!post || !post.detail.endsWith(' failed')) continue;
+      const prevStart = start > 0 ? data.lastIndexOf(10, start - 2) + 1 : -1;
+      const prev = prevStart >= 0 ? record(prevStart, start) : undefined;
+      if (prev?.kind === 'error' && prev.module === post.module) this.lostEvents.see(prev);
+      this.lostEvents.see(post);
     }
   }
 
@@ -299,6 +329,7 @@ export class RunIssues {
       // not one log of the run left where the runtime writes them: its logs/ was emptied, moved or replaced
       this.list.push({ kind: 'log-tampered', message: `no CSV log of the run was collected although ${listModules(missing)} ran and exited normally: a process of the run removed or renamed the logs (or ${LOG_DIR}/ itself)${this.diskFull ? ', or the full disk kept them from being written' : ''}` });
     }
+    for (const f of this.lostEvents.lostFlows()) this.list.push({ kind: 'events-lost', module: visibleText(f.producer), message: visibleText(lostFlowText(f)) });
     for (const f of a.files) {
       if (f.capped) this.list.push({ kind: 'log-capped', file: f.name, message: `log ${f.name} is not whole: ${f.capped}` });
     }

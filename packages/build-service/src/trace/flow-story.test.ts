@@ -137,3 +137,29 @@ describe('event posts that waited for room in a full mailbox', () => {
         expect(story.at(-1)).not.toContain('waited for room');
     });
 });
+
+describe('event posts that failed: the events lost', () => {
+    // BAT posts to GCS: two posts fail during the run (GCS's mailbox full for 2 s), one at the run's
+    // stop to a GCS already gone (the runtime's error record just before says so): no loss
+    const BAT = [
+        `${10 * MS},w,BAT,event_posted,GCS,0,8,to_port=1`,
+        `${2100 * MS},w,BAT,error,,,0,"EVENT request to GCS: mailbox full (Resource temporarily unavailable)"`,
+        `${2100 * MS + 1},w,BAT,event_posted,GCS,0,8,to_port=1 failed`,
+        `${4200 * MS},w,BAT,error,,,0,"EVENT request to GCS: mailbox full (Resource temporarily unavailable)"`,
+        `${4200 * MS + 1},w,BAT,event_posted,GCS,0,8,to_port=1 failed`,
+        `${5000 * MS},w,BAT,error,,,0,EVENT request to GCS: unknown module (No such file or directory; the run is stopping)`,
+        `${5000 * MS + 1},w,BAT,event_posted,GCS,0,8,to_port=1 failed`,
+    ];
+
+    it('are counted in the line of counts and told per flow at the end, those at the run\'s stop left out', () => {
+        const story = storyOf({ 'BAT_1.csv': BAT });
+        expect(story.at(-1)).toContain(', 2 event posts that failed (the event lost), ');
+        expect(story).toContain('2 events BAT posted to GCS were lost (BAT:0 -> GCS:1): their posts failed (PostEvent gives up after waiting 2 s for room in GCS\'s full mailbox, at once when GCS is not running); the last: EVENT request to GCS: mailbox full (Resource temporarily unavailable)');
+    });
+
+    it('are not counted when every failure was at the run\'s stop', () => {
+        const story = storyOf({ 'BAT_1.csv': [BAT[0]!, ...BAT.slice(5)] });
+        expect(story.at(-1)).not.toContain('failed');
+        expect(story.filter((l) => l.includes(' lost ('))).toEqual([]);
+    });
+});

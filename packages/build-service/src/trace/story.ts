@@ -15,6 +15,7 @@ import { ReleaseLateness } from './release-lateness.js';
 import { UndosToOrd } from './undos-to-ord.js';
 import { DataFlowUse } from './data-flow-use.js';
 import { EventWaits } from './event-waits.js';
+import { LostEvents, lostFlowText } from './lost-events.js';
 import { UnmatchedEvents } from './unmatched-events.js';
 import { ProducerChanges } from './producer-changes.js';
 import { EndedMidRun, RUN_STOPPING, type LauncherToldEnd } from './ended-mid-run.js';
@@ -445,6 +446,8 @@ export class StoryTeller {
     private readonly dataFlows = new DataFlowUse();
     /** Event flows whose posts waited for room in their subscriber's full mailbox (flowLines). */
     private readonly eventWaits = new EventWaits();
+    /** Events whose posts failed during the run: lost (lost-events.ts; flowLines, the line of counts). */
+    private readonly lostEvents = new LostEvents();
     /** A supervisor's module events that changed no rule (unmatched-events.ts). */
     private readonly unmatched = new UnmatchedEvents();
     /** Changes of producer on input data ports: schema switches, interleaves (producer-changes.ts). */
@@ -490,6 +493,7 @@ export class StoryTeller {
         this.undos.see(k);
         this.endedMidRun.see(k);
         this.dataFlows.see(k);
+        this.lostEvents.see({ module: k.module, kind: k.kind, peer: k.peer, port: k.port ?? undefined, detail: k.detail });
         const waited = this.eventWaits.see(k);
         if (waited) return `${at(k)} ${waited}`;
         const unmatched = this.unmatched.see(k);
@@ -863,14 +867,14 @@ export class StoryTeller {
     }
 
     /**
-     * What the flows did, told at the end before the schemas' lines: each event flow whose posts
-     * waited for room (event-waits.ts), each supervisor's flow whose events changed no rule, with
+     * What the flows did, told at the end before the schemas' lines: each event flow that lost
+     * events (its posts failed, lost-events.ts), each event flow whose posts waited for room (event-waits.ts), each supervisor's flow whose events changed no rule, with
      * their values (unmatched-events.ts), each input data port whose producer changed
      * (producer-changes.ts), each data flow ORD connected that delivered nothing or far less than
      * its reader read (data-flow-use.ts).
      */
     flowLines(): string[] {
-        return [...this.eventWaits.lines(), ...this.unmatched.lines(), ...this.producerChanges.lines(), ...this.dataFlows.lines()];
+        return [...this.lostEvents.lostFlows().map(lostFlowText), ...this.eventWaits.lines(), ...this.unmatched.lines(), ...this.producerChanges.lines(), ...this.dataFlows.lines()];
     }
 
     /** The same figures as data, in name order (`contract run` and `contract simulate --format json`). */
@@ -883,12 +887,13 @@ export class StoryTeller {
         return { ...this.counted };
     }
 
-    /** The line of counts' words for the flows flowLines tells (`1 data flow that delivered nothing, 340 event posts that waited for room, `), '' when none. */
+    /** The line of counts' words for the flows flowLines tells (`1 data flow that delivered nothing, 2 event posts that failed (the event lost), 340 event posts that waited for room, `), '' when none. */
     private flowCounts(): string {
-        const { silent, sparse, silentEvents } = this.dataFlows.counts, waits = this.eventWaits.waits;
+        const { silent, sparse, silentEvents } = this.dataFlows.counts, waits = this.eventWaits.waits, lost = this.lostEvents.lost;
         return `${silent ? `${plural(silent, 'data flow')} that delivered nothing, ` : ''}` +
             `${silentEvents ? `${plural(silentEvents, 'event flow')} a supervisor connected that delivered nothing, ` : ''}` +
             `${sparse ? `${plural(sparse, 'data flow')} written far less often than read, ` : ''}` +
+            `${lost ? `${plural(lost, 'event post')} that failed (the event lost), ` : ''}` +
             `${waits ? `${plural(waits, 'event post')} that waited for room, ` : ''}` +
             `${this.unmatched.count ? `${plural(this.unmatched.count, 'event')} that changed no rule, ` : ''}` +
             `${this.producerChanges.interleaves ? `${plural(this.producerChanges.interleaves, 'interleaved producer change')}, ` : ''}`;
