@@ -114,3 +114,24 @@ test.skipIf(process.getuid?.() !== 0)('a build after a run the disk limit stoppe
   const [id] = readdirSync(join(cacheDir, 'projects'));
   expect(existsSync(join(cacheDir, 'projects', id!, 'work', 'logs'))).toBe(false);
 }, 240_000);
+
+/** MSC's init fills the work dir with a plain file beside logs/ (not a log) until the disk refuses. */
+const BIGFILE = FILL.replace('"%s/fill.bin"', '"%s/../bigfile"');
+
+test.skipIf(process.getuid?.() !== 0)('a log the disk reserve stopped says what filled the work dir (a module\'s bigfile), not the run\'s logs', async () => {
+  const files = withRegion(withRegion(await tutorialFiles(), MSC, 'protect_init_MSC', BIGFILE, true), MSC, 'protect_additional_import_MSC', '#include <stdlib.h>', true);
+  const job = await service.submit({ action: 'run', sandbox: 'bwrap', duration: 2, project: { files } });
+  const lines = await finished(job);
+  const result = job.result!;
+  const tail = lines.slice(-30).join('\n');
+  expect(result.limitHit?.name, `${result.message}\n${tail}`).toBe('workDiskMiB');
+  const filledBy = /: filled by (bigfile [\d.]+ MiB \(of [^)]*\))/.exec(result.message ?? '')?.[1];
+  expect(filledBy, result.message ?? '').toBeDefined();
+  const reserve = result.issues.filter((i) => i.kind === 'log-capped' && i.message.includes('its module stopped writing at'));
+  expect(reserve.length, JSON.stringify(result.issues, null, 1)).toBeGreaterThan(0);
+  // the same measure as the FAILED line's, not a guess that the logs filled it
+  for (const i of reserve) {
+    expect(i.message).toContain(`the work dir was nearly full, filled by ${filledBy}`);
+    expect(i.message).not.toContain('of the run\'s logs');
+  }
+}, 240_000);

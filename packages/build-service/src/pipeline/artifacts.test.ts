@@ -5,6 +5,7 @@ import { afterEach, beforeEach, describe, expect, test } from 'vitest';
 import { RUN_LOG_MAX_BYTES, RUNTIME_LOG_MAX_BYTES, runLogMaxBytes, SERVICE_BOUNDS } from '../limits.js';
 import { ARTIFACT_BOUNDS, artifactBoundsFor, artifactBytes, collectRunArtifacts, hostWorkDirReader, listHostDir } from './artifacts.js';
 import { parseRecordLine } from '../trace/parse.js';
+import { describeWorkUsage, hostWorkUsage } from './work-usage.js';
 
 let work: string;
 let outside: string;
@@ -126,6 +127,26 @@ describe('collectRunArtifacts on a host work dir (bwrap, none)', () => {
     writeFileSync(join(work, 'logs', 'CTL_1.csv'), text);
     const a = await collectRunArtifacts(hostWorkDirReader, work);
     expect(a.files.map((f) => [f.name, f.capped])).toEqual([['CTL_1.csv', 'the disk refused its module\'s writes past 23.99 KiB (the work dir was full): later records were not written']]);
+  });
+
+  test('a log the logs\' disk reserve stopped says what filled the work dir (its biggest files, measured), not that the logs did', async () => {
+    mkdirSync(join(work, 'logs'));
+    const text = 'mono_ns,wall_time,module,event,peer,port,size,detail\n1,t,CTL,run_started,,,0,a\n2,t,CTL,log-capped,,,5200,log stopped at 5200 bytes: its disk had 100 bytes free; less than the logs\' 1048576-byte reserve (CONTRACT_LOG_DISK_RESERVE_BYTES) and the 80 bytes to write: later records are not written\n';
+    writeFileSync(join(work, 'logs', 'CTL_1.csv'), text);
+    writeFileSync(join(work, 'bigfile'), Buffer.alloc(3 * 1024 * 1024));
+    let asked = 0;
+    const a = await collectRunArtifacts(hostWorkDirReader, work, ARTIFACT_BOUNDS, undefined, {
+      workFilledBy: async () => {
+        asked++;
+        const usage = await hostWorkUsage(work);
+        return usage ? describeWorkUsage(usage) : null;
+      },
+    });
+    expect(a.files[0]!.capped).toMatch(/^its module stopped writing at 5\.08 KiB: the work dir was nearly full, filled by bigfile 3 MiB, logs\/CTL_1\.csv \d+ B \(of 3 MiB in 2 file\(s\)\) \(the logs' disk reserve, CONTRACT_LOG_DISK_RESERVE_BYTES, keeps its last room\): later records were not written$/);
+    expect(asked).toBe(1);
+    // not measured: no guess either
+    const unknown = await collectRunArtifacts(hostWorkDirReader, work);
+    expect(unknown.files[0]!.capped).toBe('its module stopped writing at 5.08 KiB: the work dir was nearly full (the logs\' disk reserve, CONTRACT_LOG_DISK_RESERVE_BYTES, keeps its last room): later records were not written');
   });
 
   test("a log whose only log-capped record is the runtime's last one after the disk refused it (`K records not written after the log could not be written past N bytes`) is said to be cut by the full disk, with what the disk took", async () => {

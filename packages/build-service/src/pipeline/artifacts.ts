@@ -63,7 +63,7 @@ const CAPPED_SIZE = /,log-capped,[^,\n]{0,64},[^,\n]{0,16},(\d{1,15}),([^\n]{0,1
  * (...)`), not the bound: its size column is then what the disk took.
  */
 const DISK_REFUSED = /^(?:\d{1,20} records not written after the )?log could not be written past /;
-/** A log the logs' disk reserve stopped (CONTRACT_LOG_DISK_RESERVE_BYTES: the work dir nearly full of logs). */
+/** A log the logs' disk reserve stopped (CONTRACT_LOG_DISK_RESERVE_BYTES: the work dir nearly full). */
 const DISK_RESERVE = /^(?:\d{1,20} records not written after the )?log stopped at \d{1,20} bytes/;
 
 /** The folders of the work dir a run leaves things in: `logs/` (collected) and `run/` (names only). */
@@ -168,6 +168,12 @@ export interface CollectOptions {
   launchedModules?: ReadonlySet<string>;
   /** A cancel: the files not read yet are left out (listed in `skipped`), a read under way is stopped. */
   signal?: AbortSignal;
+  /**
+   * What filled the work dir (work-usage.ts describeWorkUsage: `bigfile 253 MiB (of 255 MiB in 12
+   * file(s))`), asked once, only when a log stopped at the logs' disk reserve: its reason names it
+   * rather than guessing that the logs filled it. Null: not measured.
+   */
+  workFilledBy?: () => Promise<string | null>;
 }
 
 /** Why a file was not read: the job was cancelled while its logs were collected. */
@@ -209,6 +215,8 @@ export async function selectArtifacts(
   /** The latest record of the logs collected, and the cut files that kept none (their record waits for it). */
   let latest: string | undefined;
   const timeless: { index: number; name: string; kept: Buffer; size: number; bound: number; capped: string }[] = [];
+  /** What filled the work dir (options.workFilledBy), asked at the first log stopped at the disk reserve; null: not known. */
+  let filledBy: string | null | undefined;
   // the sandbox decides how many entries there are: only a bounded number is looked at, the modules' logs first
   const all = inCollectionOrder(listing.entries, options.launchedModules);
   const sorted = all.slice(0, bounds.entries);
@@ -252,10 +260,11 @@ export async function selectArtifacts(
           // the bound is the log-capped record's size column (docs/runtime-api.md); a write the disk
           // refused ends the log the same way, its size column then what the disk took
           const m = CAPPED_SIZE.exec(tail.toString('latin1'));
+          if (m && DISK_RESERVE.test(m[2]!)) filledBy ??= (await options.workFilledBy?.().catch(() => null)) ?? null;
           capped = m && DISK_REFUSED.test(m[2]!)
             ? `the disk refused its module's writes past ${formatBytes(Number(m[1]))} (the work dir was full): later records were not written`
             : m && DISK_RESERVE.test(m[2]!)
-              ? `its module stopped writing at ${formatBytes(Number(m[1]))}: the work dir was nearly full of the run's logs (the logs' disk reserve, CONTRACT_LOG_DISK_RESERVE_BYTES): later records were not written`
+              ? `its module stopped writing at ${formatBytes(Number(m[1]))}: the work dir was nearly full${filledBy ? `, filled by ${filledBy}` : ''} (the logs' disk reserve, CONTRACT_LOG_DISK_RESERVE_BYTES, keeps its last room): later records were not written`
               : `the module reached its CSV log bound${m ? ` of ${formatBytes(Number(m[1]))}` : ''} (CONTRACT_LOG_MAX_BYTES): later records were not written`;
         }
       }

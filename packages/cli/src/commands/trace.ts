@@ -314,7 +314,7 @@ export class ModuleEnds {
         if (NAMING_KINDS.has(r.kind) && base.peer !== m && !this.named.has(base.peer) && this.named.size < MODULES_FOLLOWED && MODULE_NAME.test(base.peer))
             this.named.set(ownString(base.peer), { at, by: m, kind: r.kind });
         const final = r.kind === 'log-capped' && base.peer !== 'build-service' ? CAP_FINAL.exec(base.detail) : null;
-        if (final) this.endsCapped.set(m, { dropped: ownString(final[1]!), why: final[2]!.startsWith('reached') ? 'its log reached its bound' : final[2]!.startsWith('stopped') ? 'its log stopped at the logs\' disk reserve (the work dir nearly full of logs)' : 'its log could not be written further (a full disk)' });
+        if (final) this.endsCapped.set(m, { dropped: ownString(final[1]!), why: final[2]!.startsWith('reached') ? 'its log reached its bound' : final[2]!.startsWith('stopped') ? 'its log stopped at the logs\' disk reserve (the work dir nearly full)' : 'its log could not be written further (a full disk)' });
         else this.endsCapped.delete(m); // a record after it: its log does not end capped
         if (r.kind === 'module_started') this.started.add(m);
         if (r.kind === 'log-capped') {
