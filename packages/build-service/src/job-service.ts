@@ -170,7 +170,7 @@ export class JobService {
   parseRequest(body: unknown): { request: JobRequest; sandbox: SandboxChoice } {
     if (!body || typeof body !== 'object' || Array.isArray(body)) throw new ServiceError(400, 'bad_request', JSON_BODY_NOT_OBJECT);
     const b = body as Record<string, unknown>;
-    const known = new Set(['action', 'project', 'kind', 'sandbox', 'start', 'duration', 'readyTimeout', 'cpus', 'realtime', 'limits', 'stdin']);
+    const known = new Set(['action', 'project', 'kind', 'sandbox', 'start', 'duration', 'readyTimeout', 'cpus', 'realtime', 'werror', 'limits', 'stdin']);
     for (const k of Object.keys(b)) if (!known.has(k)) throw new ServiceError(400, 'bad_request', `unknown field "${k}"`);
     const action = b.action ?? 'build';
     if (action !== 'build' && action !== 'run') throw new ServiceError(400, 'bad_request', 'action must be "build" or "run"');
@@ -195,6 +195,8 @@ export class JobService {
     if (missing !== undefined) throw new ServiceError(400, 'bad_request', `cpus: CPU ${missing} is not available here (${online} CPUs online: 0-${online - 1})`);
     if (b.realtime !== undefined && typeof b.realtime !== 'boolean') throw new ServiceError(400, 'bad_request', 'realtime must be true or false');
     if (b.realtime === true && action !== 'run') throw new ServiceError(400, 'bad_request', 'realtime applies to action "run" only');
+    if (b.werror !== undefined && typeof b.werror !== 'boolean') throw new ServiceError(400, 'bad_request', 'werror must be true or false');
+    if (b.werror === true && kind !== 'cactal') throw new ServiceError(400, 'bad_request', 'werror applies to a Cactal project only (a Makefile project sets its own flags)');
     let stdin: Record<string, string> | undefined;
     if (b.stdin !== undefined) {
       if (action !== 'run') throw new ServiceError(400, 'bad_request', 'stdin applies to action "run" only');
@@ -222,7 +224,7 @@ export class JobService {
     const duration = b.duration === undefined ? undefined : Math.min(b.duration as number, longestRun);
     const { project, projectKey } = this.parseProject(b.project);
     return {
-      request: { action, project, projectKey, kind, start: b.start as string | undefined, duration, ...(duration !== undefined && duration < (b.duration as number) ? { durationAsked: b.duration as number } : {}), ...(readyTimeout !== undefined ? { readyTimeout: readyTimeout as number } : {}), ...(b.cpus !== undefined ? { cpus: b.cpus as string } : {}), ...(b.realtime === true ? { realtime: true } : {}), ...(stdin && Object.keys(stdin).length ? { stdin } : {}), limits },
+      request: { action, project, projectKey, kind, start: b.start as string | undefined, duration, ...(duration !== undefined && duration < (b.duration as number) ? { durationAsked: b.duration as number } : {}), ...(readyTimeout !== undefined ? { readyTimeout: readyTimeout as number } : {}), ...(b.cpus !== undefined ? { cpus: b.cpus as string } : {}), ...(b.realtime === true ? { realtime: true } : {}), ...(b.werror === true ? { werror: true } : {}), ...(stdin && Object.keys(stdin).length ? { stdin } : {}), limits },
       sandbox,
     };
   }

@@ -50,7 +50,7 @@ export interface JobOptions {
 }
 
 export const COMMON_VALUED = ['sandbox', 'format', 'runtime', 'cache-dir'];
-export const COMMON_FLAGS = ['verbose'];
+export const COMMON_FLAGS = ['verbose', 'werror'];
 /** Options build and run take more than once. */
 export const COMMON_REPEATABLE = ['limit'];
 /** Their usage line of `--limit` (the reading `contract serve` shares: conventions' limit-option.ts). */
@@ -79,6 +79,8 @@ export const COMMON_USAGE = [
     '  --cache-dir: the build cache (built runtime, one work tree per project; default: $CONTRACT_CACHE_DIR,',
     '               else $XDG_CACHE_HOME/contract-studio, else ~/.cache/contract-studio; root: /var/cache/contract-studio)',
     '  --verbose: print every build line and the time of every step (otherwise only gcc diagnostics and the summary)',
+    '  --werror: compile the project\'s code (every module, your protected regions and files) with -Werror: a gcc warning fails the build',
+    '            (the runtime is warning-free already); without it warnings are printed and the build goes on',
 ];
 export const EXIT_TABLE = 'exit status: 0 success, 1 project errors / build failed / run failed or a module crashed, 2 bad usage, 3 no usable sandbox or a build cache folder that cannot be trusted, 4 run incomplete (a limit hit, a module stuck, hung at the stop or ended early, the start request refused, output or logs cut), 130 interrupted';
 
@@ -138,6 +140,8 @@ export interface RunRequest {
     readyTimeout?: number;
     cpus?: string;
     realtime?: boolean;
+    /** --werror: the project's code compiled with -Werror (the build service's `werror`). */
+    werror?: boolean;
     /** `--stdin NAME=FILE`: module NAME reads FILE (a file of the project, its path from DIR) on its stdin. */
     stdin?: Record<string, string>;
     /** --run-limit: the run step's wall time limit in seconds (default: cliLimits). */
@@ -235,6 +239,7 @@ export async function runJob(
                 ...(request.readyTimeout !== undefined ? { readyTimeout: request.readyTimeout } : {}),
                 ...(request.cpus !== undefined ? { cpus: request.cpus } : {}),
                 ...(request.realtime ? { realtime: true } : {}),
+                ...(request.werror ? { werror: true } : {}),
                 ...(request.stdin ? { stdin: request.stdin } : {}),
             });
         } catch (e) {
@@ -284,6 +289,11 @@ const DURATION_CAPPED_LINE = /^duration \S+ s capped to \S+ s: the run time limi
 const DURATION_CAPPED_WARNING = DURATION_CAPPED_LINE;
 /** The service's line while another command holds the project (build-service job.ts onWait): said in every mode. */
 const WAITING_LINE = /^waiting for the other command using this project \(/;
+/**
+ * The service's line of what holds a real-time run (job.ts: `real-time mode: SCHED_FIFO up to 99 (...); ...`):
+ * said in every mode, as what a user must see to trust the run's timing (its refusal ends the job and is its status line).
+ */
+const REALTIME_LINE = /^real-time mode: /;
 /** The service's line of the error that ended the prepare step (job.ts): the status line says it (`FAILED: prepare failed: ...`), once. */
 const PREPARE_FAILED_LINE = /^error: /;
 /** The service's `time: <step> N ms` lines: --verbose only (a terminal's progress lines leave them out). */
@@ -400,6 +410,11 @@ export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['r
         }
         // a command that waits says for whom in every output, in CI too (stderr no terminal): never a silent pause
         if (e.source === 'service' && WAITING_LINE.test(e.line)) {
+            io.err(`${e.line}\n`);
+            return;
+        }
+        // what holds a real-time run: said in every mode, once (docs/sandbox.md "Real-time mode")
+        if (e.step === 'prepare' && e.source === 'service' && REALTIME_LINE.test(e.line)) {
             io.err(`${e.line}\n`);
             return;
         }

@@ -49,6 +49,21 @@ describe('the service\'s lines', () => {
     });
 });
 
+describe('the service\'s real-time mode line', () => {
+    const REALTIME = 'real-time mode: SCHED_FIFO up to 99 (inherited-fifo); cpu.rt_runtime_us 40000 per 100000 on each CPU (cgroup-v1-rt); RLIMIT_RTTIME 0.5 s / 1 s';
+    it('is printed once in every mode (docs/sandbox.md: the job\'s first lines say it), not only with --verbose', () => {
+        for (const mode of [{}, { format: 'json' as const }, { progress: true }, { verbose: true }]) {
+            const io = capture(root);
+            const opts = { dir: root, dirArg: '.', sandbox: 'bwrap', format: mode.format ?? 'text', verbose: !!mode.verbose, progress: !!mode.progress, runtime: undefined, cacheDir: undefined } as JobOptions;
+            const print = makePrinter(opts, io, [], []);
+            print(service('prepare', REALTIME));
+            print(service('prepare', 'generated 23 files'));
+            expect(io.stderr.split('\n').filter((l) => l === REALTIME), JSON.stringify(mode)).toHaveLength(1);
+            expect(io.stdout).toBe('');
+        }
+    });
+});
+
 describe('the service\'s line of each prepare problem', () => {
     it('is not printed as it comes, in any mode: the closing lines print each once, at its path from here (prepareErrors)', () => {
         const lines = [

@@ -13,7 +13,7 @@ import { LineSplitter } from '../util/line-splitter.js';
 import { looksLikeGccJson } from './gcc-json.js';
 import { removeTreeNoFollow } from '../util/safe-fs.js';
 import { hostWorkTreeDigest } from './work-tree-digest.js';
-import { describeWorkUsage, hostWorkUsage } from './work-usage.js';
+import { describeWorkUsage, hostWorkUsage, type WorkUsage } from './work-usage.js';
 import { artifactBoundsFor, collectRunArtifacts, hostWorkDirReader, LOG_DIR, RUN_DIR, type Artifact, type ArtifactBounds, type RunArtifacts } from './artifacts.js';
 import type { CactalProblem } from './cactal-adapter.js';
 import { beginsAsMakeDirectory, type GccDiagnostic, type UserCopy } from './gcc-diagnostics.js';
@@ -83,6 +83,8 @@ export interface JobRequest {
   cpus?: string;
   /** Real-time mode (run only): modules take their SCHED_FIFO priorities, bounded (docs/sandbox.md "Real-time mode"). */
   realtime?: boolean;
+  /** A Cactal project's own code compiled with -Werror: a warning fails the build (`contract build/run --werror`). */
+  werror?: boolean;
   /** Run only: module name -> a file of the project it reads on its stdin (stdin-files.ts); the others read /dev/null. */
   stdin?: Record<string, string>;
   limits: Limits;
@@ -158,6 +160,8 @@ export class Job {
   artifacts: RunArtifacts | null = null;
   /** How long collecting them took (ms). */
   artifactsCollectMs: number | null = null;
+  /** What filled the work dir when the disk limit stopped the step (its message's `filled by ...`), reused for a log the disk reserve stopped. */
+  private workUsageAtEnd: WorkUsage | null = null;
   /**
    * The crash sites the job mapped after its run, as `contract trace` tells a crash file (each
    * module's head line, then its frames: crash-frames.ts), given with the artifacts (its MODULE.crash
@@ -437,10 +441,16 @@ export class Job {
       // a generated tree is built by its generated Makefile, named (-f): never by a GNUmakefile or
       // makefile beside it, which make would read first (foreign-makefiles.ts)
       const makefile = generatedMakefileArgs(this.request.kind);
-      const make = ['make', '-C', dir, ...makefile, 'all', ...vars, 'EXTRA_CFLAGS=-fdiagnostics-format=json'];
+      // werror: the project's code (not the runtime, prebuilt warning-free) with -Werror; every module
+      // compiled again (its executable removed first): one built before without it is up to date for
+      // make, its warnings never seen (make -B would rebuild the runtime too, in its read-only folder)
+      const strict = this.request.werror === true && this.request.kind === 'cactal';
+      const make = ['make', '-C', dir, ...makefile, 'all', ...vars, `EXTRA_CFLAGS=-fdiagnostics-format=json${strict ? ' -Werror' : ''}`];
       const parallel = this.request.kind === 'cactal';
       const parallelMake = ['make', '-k', `-j${buildJobs(this.request.limits)}`, '--output-sync=recurse', ...make.slice(1)];
-      const argv = parallel ? ['sh', '-c', 'exec "$@" 2>&1', 'sh', ...parallelMake] : make;
+      const argv = !parallel ? make
+        : strict ? ['sh', '-c', 'for d in "$1"/modules/*_mod; do m=${d##*/}; rm -f -- "$d/${m%_mod}"; done; shift; exec "$@" 2>&1', 'sh', dir, ...parallelMake]
+          : ['sh', '-c', 'exec "$@" 2>&1', 'sh', ...parallelMake];
       const router = new BuildOutputRouter({
         startDir: posix.join(work, makeDir(this.request.kind)),
         root: posix.join(work, treeRoot(this.request.kind)),
@@ -516,6 +526,9 @@ export class Job {
         const runEnv: Record<string, string> = {
           CONTRACT_STOP_BUDGET_MS: String(CANCEL_GRACE_MS - STOP_BUDGET_MARGIN_MS),
           CONTRACT_END_BY_S: String(longestDuration(this.request.limits.runSeconds)),
+          // past the output limit the launcher drops the modules' lines itself (read, not relayed to be
+          // dropped here): a module printing past it is drained at the launcher's speed and keeps its period
+          CONTRACT_OUTPUT_LIMIT_BYTES: String(this.request.limits.outputBytesPerStream),
           ...(logBound !== null ? {
             CONTRACT_LOG_MAX_BYTES: String(logBound.maxBytes),
             CONTRACT_LOG_DISK_RESERVE_BYTES: String(logBound.reserve.modules),
@@ -779,6 +792,11 @@ export class Job {
       }, {
         launchedModules: this.runIssues.launchedModules,
         signal: abort.signal,
+        // a log stopped at the disk reserve says what filled the work dir: the disk hit's measure, else one now
+        workFilledBy: async () => {
+          const usage = this.workUsageAtEnd ?? await (sandbox.workUsage ? sandbox.workUsage(workDir) : hostWorkUsage(workDir)).catch(() => null);
+          return usage ? describeWorkUsage(usage) : null;
+        },
       });
       // a cancelled run's processes were killed: the mailboxes and pid files they leave say nothing
       this.artifacts = this.cancelRequested ? { ...collected, runDirLeftovers: [] } : collected;
@@ -986,6 +1004,7 @@ export class Job {
     if (limitHit?.name === 'workDiskMiB' && !this.cancelRequested) {
       // say which files (which module's logs, which build products) took the space
       const usage = await workUsage();
+      this.workUsageAtEnd = usage;
       if (usage) message = `${message}: filled by ${describeWorkUsage(usage)}`;
     } else if (memoryFiles !== undefined) {
       // the job's cgroup counted the OOM kill and says what held the memory: its files, not a process

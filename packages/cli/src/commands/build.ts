@@ -10,7 +10,7 @@ export const buildCommand: Command = {
     name: 'build',
     summary: 'generate and compile a Cactal project in a sandbox (gcc + make)',
     usage: [
-        'usage: contract build DIR [--limit NAME=VALUE]... [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--cache-dir DIR] [--verbose]',
+        'usage: contract build DIR [--werror] [--limit NAME=VALUE]... [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--cache-dir DIR] [--verbose]',
         '  generates DIR/src-gen (user code in protected regions kept) in a private copy and compiles it;',
         '  gcc diagnostics are printed against src-gen/ paths, naming the protected region they are in.',
         `  limits: the build step may take ${CLI_BUILD_SECONDS}s (the build service's default is 120s); the others are the service's defaults`,
@@ -23,7 +23,8 @@ export const buildCommand: Command = {
         const parsed = parseArgs(args, COMMON_VALUED, COMMON_FLAGS, COMMON_REPEATABLE);
         const limitOptions = parseLimitOptions(parsed);
         const opts = await parseJobOptions(parsed, io, onTerminal());
-        const outcome = await runJob(opts, { action: 'build', ...(limitOptions ? { limitOptions } : {}) }, io);
+        const werror = parsed.options.get('werror') === true;
+        const outcome = await runJob(opts, { action: 'build', ...(werror ? { werror } : {}), ...(limitOptions ? { limitOptions } : {}) }, io);
         if ('error' in outcome) {
             io.err(`contract build: ${outcome.error}\n`);
             return outcome.exitCode;

@@ -165,7 +165,7 @@ export const runCommand: Command = {
     name: 'run',
     summary: 'build a Cactal project, run its architecture for a while, collect the CSV logs',
     usage: [
-        'usage: contract run DIR [--duration 10s] [--run-limit DURATION] [--start \'SUP.function(p={...})\'] [--logs OUT] [--trace FILE.jsonl] [--ready-timeout 10s] [--cpus LIST] [--realtime] [--stdin MODULE=FILE]... [--limit NAME=VALUE]... [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--cache-dir DIR] [--verbose]',
+        'usage: contract run DIR [--duration 10s] [--run-limit DURATION] [--start \'SUP.function(p={...})\'] [--logs OUT] [--trace FILE.jsonl] [--ready-timeout 10s] [--cpus LIST] [--realtime] [--werror] [--stdin MODULE=FILE]... [--limit NAME=VALUE]... [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--cache-dir DIR] [--verbose]',
         '  --duration: how long the architecture runs (default 10s; e.g. 500ms, 30s, 2m); then every module is stopped',
         '  DURATION (--duration, --run-limit, --ready-timeout): a number and its unit, ms, s or m; a number without a unit is seconds, with a warning on stderr',
         `  --run-limit: the run step's wall time limit (default: the duration + ${CLI_RUN_ROOM_SECONDS}s, and the --ready-timeout past 10s: the run lasts as long as asked);`,
@@ -215,6 +215,7 @@ export const runCommand: Command = {
         const cpusOption = parsed.options.get('cpus');
         const cpus = typeof cpusOption === 'string' ? checkCpus(cpusOption) : undefined;
         const realtime = parsed.options.get('realtime') === true;
+        const werror = parsed.options.get('werror') === true;
         const stdin = stdinFiles(parsed.repeated.get('stdin') ?? []);
         const traceOption = parsed.options.get('trace');
         if (traceOption === '') throw new UsageError('--trace needs a file: --trace FILE.jsonl');
@@ -249,7 +250,7 @@ export const runCommand: Command = {
             }
         }
         const onEvent = live ? (e: JobEvent) => live.event(e) : undefined;
-        const outcome = await runJob(opts, { action: 'run', duration, ...(runLimit !== undefined ? { runLimit } : {}), ...(readyTimeout !== undefined ? { readyTimeout } : {}), ...(start !== undefined ? { start } : {}), ...(cpus !== undefined ? { cpus } : {}), ...(realtime ? { realtime } : {}), ...(stdin ? { stdin } : {}), ...(limitOptions ? { limitOptions } : {}) }, io, undefined, onEvent);
+        const outcome = await runJob(opts, { action: 'run', duration, ...(runLimit !== undefined ? { runLimit } : {}), ...(readyTimeout !== undefined ? { readyTimeout } : {}), ...(start !== undefined ? { start } : {}), ...(cpus !== undefined ? { cpus } : {}), ...(realtime ? { realtime } : {}), ...(werror ? { werror } : {}), ...(stdin ? { stdin } : {}), ...(limitOptions ? { limitOptions } : {}) }, io, undefined, onEvent);
         if ('error' in outcome) {
             const untouched = await live?.abandon();
             io.err(`contract run: ${outcome.error}\n`);
