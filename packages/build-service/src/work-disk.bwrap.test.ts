@@ -125,7 +125,7 @@ test.skipIf(process.getuid?.() !== 0)('a log the disk reserve stopped says what 
   const result = job.result!;
   const tail = lines.slice(-30).join('\n');
   expect(result.limitHit?.name, `${result.message}\n${tail}`).toBe('workDiskMiB');
-  const filledBy = /: filled by (bigfile [\d.]+ MiB \(of [^)]*\))/.exec(result.message ?? '')?.[1];
+  const filledBy = /: filled by (bigfile [\d.]+ MiB.* \(of .*\))$/.exec(result.message ?? '')?.[1];
   expect(filledBy, result.message ?? '').toBeDefined();
   const reserve = result.issues.filter((i) => i.kind === 'log-capped' && i.message.includes('its module stopped writing at'));
   expect(reserve.length, JSON.stringify(result.issues, null, 1)).toBeGreaterThan(0);
