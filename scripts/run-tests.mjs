@@ -78,7 +78,7 @@ const CPU_ONLY = new Set(['packages/conventions', 'packages/language', 'packages
  * after the first and the CPUs were still idle 40 % of the time (25.5 min of CPU in 21 min on two
  * cores). Three lanes of about the same length in a full run (lane 1 1,114 s and lane 2 1,094 s
  * when the third held only the IDE's seven longest browser files, 491 s): the C runtime and the
- * build service; the CLI and the rest of the IDE; the IDE's fifteen longest browser files (each
+ * build service; the CLI and the rest of the IDE; the IDE's twenty longest browser files (each
  * has its own server on its own port and its own copy of the workspace), the installed CLI and
  * the CLI's Docker runs, the simulator. Packing and installing the CLI is about a minute of CPU: at
  * nice 19 in the background it once waited over five minutes for a CPU, hence its place in a lane.
@@ -93,7 +93,9 @@ const LANES = [
         'test/e2e/editor-field-test.e2e.test.ts', 'test/e2e/server-killed-during-run.e2e.test.ts', 'test/e2e/large-workspace-ready.e2e.test.ts',
         'test/e2e/run-stdin.e2e.test.ts', 'test/e2e/small-screens.e2e.test.ts', 'test/e2e/offline-two-tabs.e2e.test.ts',
         'test/e2e/architecture-laptop-widths.e2e.test.ts', 'test/e2e/monitor-launcher-gone.e2e.test.ts', 'test/e2e/generated-guard.e2e.test.ts',
-        'test/e2e/eclipse-layout.e2e.test.ts', 'test/e2e/monitor-field-test.e2e.test.ts'],
+        'test/e2e/eclipse-layout.e2e.test.ts', 'test/e2e/monitor-field-test.e2e.test.ts', 'test/e2e/architecture-layout-fallbacks.e2e.test.ts',
+        'test/e2e/editor-colours.e2e.test.ts', 'test/e2e/delete-folder.e2e.test.ts', 'test/e2e/timeline-async-module.e2e.test.ts',
+        'test/e2e/monitor-recent-jobs.e2e.test.ts'],
     },
     { ws: 'packages/cli', files: ['test/e2e/installed-cli.e2e.test.ts', 'test/e2e/docker.e2e.test.ts'] },
     'packages/simulator',
