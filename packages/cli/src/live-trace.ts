@@ -5,12 +5,21 @@
  * Only a digest of what was written is kept (a run of minutes at 1 kHz is gigabytes of JSON): at
  * the end the caller compares it with the digest of the collected logs' JSON lines (read as a
  * stream, trace-stream.ts) and rewrites the file when they differ.
+ *
+ * The launcher's end lines (`contract-launch: module MAB (pid 41) died by signal 9 (Killed)`: the
+ * job's `line` events of source `launcher`, never a module's output, which comes tagged with its
+ * name) are written among the records as `launcher_line` objects (build-service
+ * trace/launcher-line-record.ts). The live channel gives such a line no time of its own: it is
+ * written at the time of the last record written before it came; the end-of-run check writes it
+ * again at the time the launcher's lines file of the logs folder (contract-launch.log) gives it,
+ * in time order among the records (settleTraceFile: the file rewritten when that differs).
  */
 import { createHash, type Hash } from 'node:crypto';
 import { constants, promises as fsp } from 'node:fs';
 import { lstat, type FileHandle } from 'node:fs/promises';
 import type { JobEvent } from '@contract-studio/build-service';
-import { LogClocks, countRecord, parseRecordLine, type RecordCounts, type TraceRecord } from '@contract-studio/build-service/trace';
+import { LauncherLinesQueue, LogClocks, countRecord, launcherEndLine, launcherLineJson, parseRecordLine, type RecordCounts, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
+import { readLauncherLines } from './launcher-lines.js';
 import { lockTraceFile, openTraceFile } from './trace-files.js';
 import { JsonLines } from './record-json.js';
 import { closeLogs, jsonLinesOf, openLogFolder } from './trace-stream.js';
@@ -60,12 +69,32 @@ export class LiveTrace {
         this.writing = this.writing.then(() => this.handle.truncate(0)).catch((err: Error) => void (this.failed ??= err));
     }
 
-    /** A job event: a trace event's records are appended to the file (emptied at the first). */
+    /** The latest time of a record written (monotonic ns, its text), none before the first. */
+    private lastMonoNs: bigint | undefined;
+
+    /**
+     * A job event: a trace event's records are appended to the file (emptied at the first); a
+     * launcher's end line (the run step's `line` event of source `launcher`) as a `launcher_line`
+     * at the latest record's time (none before the first record: no module's start to match yet;
+     * the end-of-run check adds it at its own time).
+     */
     event(e: JobEvent): void {
-        if (e.type !== 'trace' || this.failed) return;
-        const records = e.records.map((l) => parseRecordLine(l.file, l.line, l.text, this.clocks.of(l.file)));
-        for (const r of records) countRecord(this.counts, r);
-        for (const r of records) this.lines.add(r);
+        if (this.failed) return;
+        if (e.type === 'line') {
+            if (e.source !== 'launcher' || e.step !== 'run' || this.lastMonoNs === undefined || !launcherEndLine(e.line)) return;
+            this.lines.add(launcherLineJson({ monoNs: this.lastMonoNs, line: e.line }));
+        } else if (e.type === 'trace') {
+            const records = e.records.map((l) => parseRecordLine(l.file, l.line, l.text, this.clocks.of(l.file)));
+            for (const r of records) countRecord(this.counts, r);
+            for (const r of records) {
+                this.lines.add(r);
+                if (r.kind === 'unknown') continue;
+                const mono = (r as TraceRecordBase).monoNs;
+                if (!/^\d{1,20}$/.test(mono)) continue;
+                const at = BigInt(mono);
+                if (this.lastMonoNs === undefined || at > this.lastMonoNs) this.lastMonoNs = at;
+            }
+        } else return;
         const bytes = this.lines.take();
         this.written.update(bytes);
         this.bytes += bytes.length;
@@ -112,6 +141,8 @@ export class LiveTrace {
  * put there meanwhile is replaced, its target untouched). The records counted (with `replaced`
  * when the file was not intact), or why the logs could not be read. A run that left no logs keeps
  * what came live (`live.counts`). `observe` sees each record of the logs once, in the order written.
+ * The launcher's end lines of `dir`'s contract-launch.log are written among the records, in time
+ * order (`launcher_line` objects, as `contract trace DIR --format json` writes them).
  */
 export async function settleTraceFile(dir: string, names: readonly string[], traceFile: string, live: { digest: string; counts: RecordCounts; intact?: boolean }, observe?: (r: TraceRecord) => void): Promise<(RecordCounts & { replaced?: boolean }) | string> {
     const replaced = live.intact === false ? { replaced: true } : {};
@@ -119,14 +150,16 @@ export async function settleTraceFile(dir: string, names: readonly string[], tra
     const logs = await openLogFolder(dir, names);
     if (typeof logs === 'string') return logs;
     try {
+        // the launcher's lines file is the launcher's alone (written through a descriptor no module inherits)
+        const launcher = await readLauncherLines(dir, []);
         const hash = createHash('sha256');
-        const { counts } = await jsonLinesOf(logs, (piece) => void hash.update(piece), observe);
+        const { counts } = await jsonLinesOf(logs, (piece) => void hash.update(piece), observe, new LauncherLinesQueue(launcher));
         if (hash.digest('hex') === live.digest && live.intact !== false) return counts;
         const temp = `${traceFile}.tmp-${process.pid}`;
         const out = await fsp.open(temp, constants.O_WRONLY | constants.O_CREAT | constants.O_EXCL | constants.O_NOFOLLOW, 0o644);
         try {
             try {
-                await jsonLinesOf(logs, async (piece) => void (await out.write(piece)));
+                await jsonLinesOf(logs, async (piece) => void (await out.write(piece)), undefined, new LauncherLinesQueue(launcher));
             } finally {
                 await out.close();
             }

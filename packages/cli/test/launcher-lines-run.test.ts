@@ -9,48 +9,17 @@
  * only at its end, `the launcher's output says which`.
  */
 import { spawnSync } from 'node:child_process';
-import { cpSync, existsSync, readdirSync, readFileSync, readlinkSync, writeFileSync } from 'node:fs';
+import { cpSync, existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { runCli } from '../src/cli.js';
 import { capture } from './capture-io.js';
 import { makeSeededScratch, removeSeededScratch } from './scratch.js';
+import { modulePid } from './module-pid.js';
 
 const canRun = spawnSync('bwrap', ['--version']).status === 0;
 const TUTORIAL = fileURLToPath(new URL('../../../examples/tutorial', import.meta.url));
-
-/** The parent of every process of this host, by pid. */
-function parents(): Map<number, number> {
-    const out = new Map<number, number>();
-    for (const d of readdirSync('/proc')) {
-        if (!/^\d+$/.test(d)) continue;
-        try {
-            const stat = readFileSync(`/proc/${d}/stat`, 'utf8');
-            out.set(Number(d), Number(stat.slice(stat.lastIndexOf(')') + 2).split(' ')[1]));
-        } catch { /* gone meanwhile */ }
-    }
-    return out;
-}
-
-/** The host pid of this test's run of module `name` (a descendant of this process whose executable is `…/<name>_mod/<name>`), or undefined. */
-function modulePid(name: string): number | undefined {
-    const up = parents();
-    const mine = (pid: number) => {
-        for (let p = pid, n = 0; p > 1 && n < 64; p = up.get(p) ?? 0, n++) if (p === process.pid) return true;
-        return false;
-    };
-    for (const pid of up.keys()) {
-        let exe = '';
-        try {
-            exe = readlinkSync(`/proc/${pid}/exe`);
-        } catch {
-            continue;
-        }
-        if (exe.endsWith(`/${name}_mod/${name}`) && mine(pid)) return pid;
-    }
-    return undefined;
-}
 
 let root: string;
 

@@ -33,6 +33,37 @@ describe('LiveTrace', () => {
         expect(live.counts).toEqual({ records: 5, unreadable: 0 });
     });
 
+    it('writes the launcher\'s end line as it comes (a launcher_line at the latest record\'s time), never a module\'s output in its words', async () => {
+        const path = join(dir, 'l.jsonl');
+        const live = await LiveTrace.open(path);
+        live.event({ type: 'line', seq: 1, t: 0, step: 'run', source: 'launcher', stream: 'stderr', line: 'module SUP (pid 1) died by signal 9 (Killed)' }); // no record yet: no module to match
+        live.event(trace(1, 2));
+        live.event({ type: 'line', seq: 4, t: 0, step: 'run', source: 'SUP', stream: 'stderr', line: 'contract-launch: module SUP (pid 2) died by signal 9 (Killed)' });
+        live.event({ type: 'line', seq: 5, t: 0, step: 'run', source: 'SUP', stream: 'stderr', line: 'module SUP (pid 2) died by signal 9 (Killed)' });
+        live.event({ type: 'line', seq: 6, t: 0, step: 'run', source: 'launcher', stream: 'stderr', line: 'run directory /x' });
+        live.event({ type: 'line', seq: 7, t: 0, step: 'run', source: 'launcher', stream: 'stderr', line: 'module SUP (pid 2) died by signal 9 (Killed)' });
+        await live.close();
+        const records = toJsonLines([1, 2].map((n) => parseRecordLine('SUP_1.csv', n + 1, line(n).text)));
+        expect(readFileSync(path, 'utf8')).toBe(`${records}{"kind":"launcher_line","monoNs":"1002","line":"module SUP (pid 2) died by signal 9 (Killed)"}\n`);
+        expect(live.counts).toEqual({ records: 2, unreadable: 0 }); // a launcher line is no record
+    });
+
+    it('settles the file with the logs folder\'s launcher end lines at their own time, in time order among the records', async () => {
+        const logs = join(dir, 'logs');
+        mkdirSync(logs);
+        writeFileSync(join(logs, 'SUP_1.csv'), `${CSV_HEADER}\n${[1, 2, 3].map((n) => line(n).text).join('\n')}\n`);
+        writeFileSync(join(logs, 'contract-launch.log'), '1001 run directory /x\n1002 module SUP (pid 2) died by signal 9 (Killed)\n');
+        const path = join(dir, 's.jsonl');
+        const live = await LiveTrace.open(path);
+        live.event(trace(1, 3));
+        live.event({ type: 'line', seq: 4, t: 0, step: 'run', source: 'launcher', stream: 'stderr', line: 'module SUP (pid 2) died by signal 9 (Killed)' });
+        const closed = await live.close();
+        expect(await settleTraceFile(logs, ['SUP_1.csv'], path, { ...closed, counts: live.counts })).toEqual({ records: 3, unreadable: 0 });
+        live.release();
+        const rec = (n: number) => toJsonLines([parseRecordLine('SUP_1.csv', n + 1, line(n).text)]);
+        expect(readFileSync(path, 'utf8')).toBe(`${rec(1)}${rec(2)}{"kind":"launcher_line","monoNs":"1002","line":"module SUP (pid 2) died by signal 9 (Killed)"}\n${rec(3)}`);
+    });
+
     it('counts an unreadable line apart from the records, as `contract trace` and the Monitor do', async () => {
         const live = await LiveTrace.open(join(dir, 'u.jsonl'));
         live.event({ type: 'trace', seq: 1, t: 0, records: [line(1), { file: 'SUP_1.csv', line: 3, text: 'not a record at all' }, line(2)] });

@@ -6,7 +6,7 @@
 export { TRACE_KINDS, traceKind, isUserEventName, type TraceKind, type TraceArea } from './record-kinds.js';
 export { parseTrace, parseLogFile, parseRecordLine, recordOfLine, unendedLine, recordLineEnd, parseCause, ownString, moduleOfLog, moduleNamedByLog, isLogFileName, twinLogs, TWIN_LOGS_WHY, foreignRecordReason, CSV_HEADER, MAX_LINE_CHARS, type LogFile } from './parse.js';
 export { splitCsvLine, csvField } from './csv-line.js';
-export { traceFileToLogs, traceFileToLogsSteps, recordOfJsonLine, jsonLineToCsv, MAX_JSON_LINE_CHARS, MAX_TRACE_FILE_MODULES, type TraceFileLogs, type JsonLineRead } from './jsonl.js';
+export { traceFileToLogs, traceFileToLogsSteps, recordOfJsonLine, traceFileItemOfJsonLine, jsonLineToCsv, MAX_JSON_LINE_CHARS, MAX_TRACE_FILE_MODULES, type TraceFileLogs, type JsonLineRead } from './jsonl.js';
 export { isDigitsIn, isModuleNameIn, isPlainIntegerIn, spaceIn, wordValueIn } from './field-checks.js';
 export { schedulerLineFields } from './text-lines.js';
 export { skippedReleasesOf, overrunningAfter, missedTicksOf } from './ord-counts.js';
@@ -14,6 +14,7 @@ export { durationText } from './duration-text.js';
 export { confirmingHold, flowHoldName, type ConfirmingHold } from './action-holds.js';
 export { launcherEndLine, endedOnItsOwn, type LauncherEnd } from './launcher-end-line.js';
 export { LAUNCHER_LINES_FILE, MAX_LAUNCHER_LINES_BYTES, MAX_LAUNCHER_LINES, launcherLinesOfFile, LauncherLinesQueue, type LauncherFileLine } from './launcher-lines-file.js';
+export { LAUNCHER_LINE_KIND, launcherLineJson, launcherLineOfJson, isLauncherLine, type LauncherLineJson, type LauncherLineItem } from './launcher-line-record.js';
 export { renderStory, StoryTeller, CUT_RECORD, crashText, unheardEventText, type SchemaFigures, type NamedSchemaFigures, dataDropReason, userRecordText, keptRequestsText, askedToStopText, holdText, ownRunEndText, readableCause, missWaitText, missCriticalDelayNs, earlyFinish, sinceTickText, type EarlyAck, type EarlyFinish, priorityText, LATE_RELEASE_SHARE, stuckSaysGone, ignoredUndo, LATE_RELEASE_NS, STORY_FOLLOWED } from './story.js';
 export { DataFlowUse, SILENT_FLOW_MIN_NS, SPARSE_FLOW_RATIO } from './data-flow-use.js';
 export { SupervisorFlowUse } from './supervisor-flow-use.js';

@@ -12,11 +12,17 @@
  * counted, as logs. The `sim_start` record that heads a simulation is no record of a run: skipped as
  * logs (each simulation of a file starts at time 0 again: the first is kept, the others left out,
  * said) and, read one by one, handed as itself (`contract trace` heads each simulation's story with it).
+ * A `launcher_line` (the launcher's end line of a module, which the CLI writes among the records:
+ * launcher-line-record.ts) is no record either: read one by one, it is handed as the line it holds;
+ * as logs, the file's launcher lines are kept apart (`launcherLines`), as a logs folder's
+ * `contract-launch.log` gives them.
  */
 import { csvField } from './csv-line.js';
 import { CSV_HEADER, UNENDED_LINE, parseRecordLine, type LogFile } from './parse.js';
 import type { KnownRecord, TraceRecord, UnknownRecord } from './records.js';
 import { LogClocks, type LogClock } from './log-clock.js';
+import { LAUNCHER_LINE_KIND, isLauncherLine, launcherLineOfJson, type LauncherLineItem } from './launcher-line-record.js';
+import { MAX_LAUNCHER_LINES } from './launcher-lines-file.js';
 
 /** Longer lines are not records (a record's CSV line is at most MAX_LINE_CHARS; its JSON adds the derived fields). */
 export const MAX_JSON_LINE_CHARS = 16_384;
@@ -32,6 +38,8 @@ export type JsonLineRead =
     | { csv: string; module: string; cut?: true }
     | { carried: UnknownRecord }
     | { simStart: KnownRecord }
+    /** the launcher's end line of a module (kind `launcher_line`), not a record */
+    | { launcher: LauncherLineItem }
     | { problem: string };
 
 /** A text field of a carried unknown record, bounded (it is printed). */
@@ -56,6 +64,10 @@ export function jsonLineToCsv(line: string): JsonLineRead {
         const mono = typeof r['monoNs'] === 'string' && /^\d{1,20}$/.test(r['monoNs']) ? r['monoNs'] : '0';
         return { simStart: { kind: 'sim_start', monoNs: mono, wallTime: '', module: 'SIM', peer: '', port: null, size: 0, detail: shortText(r['detail']), fields: {} } };
     }
+    if (r['kind'] === LAUNCHER_LINE_KIND) {
+        const l = launcherLineOfJson(r);
+        return 'problem' in l ? l : { launcher: l };
+    }
     const { kind, monoNs, wallTime, module, peer, port, size, detail } = r;
     if (typeof kind !== 'string' || typeof monoNs !== 'string' || typeof module !== 'string' || typeof detail !== 'string') {
         return { problem: 'kind, monoNs, module and detail must be strings' };
@@ -75,13 +87,23 @@ export function jsonLineToCsv(line: string): JsonLineRead {
 
 /**
  * One line of a trace file as a record (the CSV reader's; `unknown` saying why it is none, with
- * this file and line), or undefined for an empty line. An unreadable line of the logs the file was
+ * this file and line), or undefined for an empty line or a `launcher_line` (no record). An unreadable line of the logs the file was
  * written from comes back as the unknown record it was (its own file and line); a simulation's
  * `sim_start` as itself (its detail bounded: `simulation start: SCENARIO`).
  */
 export function recordOfJsonLine(file: string, lineNo: number, line: string, clocks?: LogClocks): TraceRecord | undefined {
+    const item = traceFileItemOfJsonLine(file, lineNo, line, clocks);
+    return item && isLauncherLine(item) ? undefined : item;
+}
+
+/**
+ * One line of a trace file as recordOfJsonLine reads it, but a `launcher_line` (no record: undefined
+ * there) handed as the launcher's end line it holds (`contract trace FILE.jsonl` tells it at its place).
+ */
+export function traceFileItemOfJsonLine(file: string, lineNo: number, line: string, clocks?: LogClocks): TraceRecord | LauncherLineItem | undefined {
     if (line.trim() === '') return undefined;
     const read = jsonLineToCsv(line);
+    if ('launcher' in read) return read.launcher;
     if ('simStart' in read) {
         clocks?.reset(); // the next simulation starts at time 0 again: no time of the last one's is 'before'
         return read.simStart;
@@ -118,6 +140,12 @@ export interface TraceFileLogs {
      * number of record lines of all the logs.
      */
     order: Uint16Array;
+    /**
+     * The file's launcher end lines (kind `launcher_line`), in the file's order, MAX_LAUNCHER_LINES
+     * at most: as a logs folder's contract-launch.log gives them (GET /api/log-folder
+     * `launcherLines`); none when the file has none.
+     */
+    launcherLines?: { monoNs: string; line: string }[];
 }
 
 /**
@@ -145,6 +173,7 @@ export function* traceFileToLogsSteps(name: string, text: string, every = 500, m
     let skipped = 0;
     let tooMany = 0;
     let simulation: string | undefined;
+    const launcherLines: { monoNs: string; line: string }[] = [];
     // the log of each record line, in the file's order (a module's index: its place in `lines`, as in `files`)
     let order = new Uint16Array(1024);
     let records = 0;
@@ -164,6 +193,10 @@ export function* traceFileToLogsSteps(name: string, text: string, every = 500, m
                 break;
             }
             simulation = read.simStart.detail.replace(/^simulation start:? ?/, '');
+            continue;
+        }
+        if ('launcher' in read) {
+            if (launcherLines.length < MAX_LAUNCHER_LINES) launcherLines.push({ monoNs: String(read.launcher.monoNs), line: read.launcher.line });
             continue;
         }
         if ('carried' in read) {
@@ -209,5 +242,5 @@ export function* traceFileToLogsSteps(name: string, text: string, every = 500, m
         files.push({ name: `${module}_${base}.csv`, text: `${CSV_HEADER}\n${l.parts.join('\n')}${l.lastCut ? '' : '\n'}` });
         yield;
     }
-    return { files, problems, skipped, unreadable: bad, ...(simulation !== undefined ? { simulation } : {}), order: order.slice(0, records) };
+    return { files, problems, skipped, unreadable: bad, ...(simulation !== undefined ? { simulation } : {}), order: order.slice(0, records), ...(launcherLines.length ? { launcherLines } : {}) };
 }

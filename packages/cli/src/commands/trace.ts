@@ -7,12 +7,13 @@
  */
 import { stat } from 'node:fs/promises';
 import { resolve } from 'node:path';
-import { LauncherLinesQueue, STORY_FOLLOWED, StoryTeller, TWIN_LOGS_WHY, isUnknown, moduleNamedByLog, ownString, twinLogs, type KnownRecord, type RecordCounts, type TraceRecord, type TraceRecordBase, type UnknownRecord, type LauncherFileLine } from '@contract-studio/build-service/trace';
+import { LauncherLinesQueue, STORY_FOLLOWED, StoryTeller, TWIN_LOGS_WHY, isUnknown, moduleNamedByLog, ownString, twinLogs, type KnownRecord, type RecordCounts, type TraceRecord, type TraceRecordBase, type UnknownRecord, type LauncherFileLine, isLauncherLine, launcherLineJson } from '@contract-studio/build-service/trace';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { escapeControls, safeName } from '../terminal-text.js';
 import { readCrashFiles } from '@contract-studio/build-service/crash-files';
 import { jsonLine } from '../trace-files.js';
+import { recordJson } from '../record-json.js';
 import { closeLogs, jsonLinesOf, LINE_CHARS_HELD, openLogFolder, streamTrace, windowFor, type OpenLog } from '../trace-stream.js';
 import { traceFileBatches } from '../trace-file-stream.js';
 import { open } from 'node:fs/promises';
@@ -51,10 +52,11 @@ export const traceCommand: Command = {
             return EXIT_FAILURE;
         }
         try {
-            // the launcher's own lines (its end line of a module killed from outside): the story only
+            // the launcher's own lines (its end line of a module killed from outside): told in the
+            // story, and written among the JSON lines (kind launcher_line) as a `--trace` file holds them
             const launcherProblems: string[] = [];
-            const launcher = format === 'text' ? await readLauncherLines(dir, launcherProblems) : [];
-            const { late, problems, counts } = format === 'json' ? await printJson(logs, io) : await printStory(logs, io, new LauncherLinesQueue(launcher));
+            const launcher = new LauncherLinesQueue(await readLauncherLines(dir, launcherProblems));
+            const { late, problems, counts } = format === 'json' ? await printJson(logs, io, launcher) : await printStory(logs, io, launcher);
             problems.push(...launcherProblems);
             if (format === 'text') await printCrashSites(dir, io, problems);
             for (const p of problems) io.err(`contract trace: warning: ${p}\n`);
@@ -89,6 +91,11 @@ async function traceFile(path: string, arg: string, format: string, io: CliIO): 
         for await (const batch of traceFileBatches(handle, arg)) {
             let piece = '';
             for (const r of batch) {
+                if (isLauncherLine(r)) {
+                    // the launcher's end line the file holds (no record): told as a logs folder's, at its place
+                    piece += format === 'json' ? recordJson(launcherLineJson(r)) + '\n' : story.launcherLine(r);
+                    continue;
+                }
                 // a line of the file that is no record is named (an unreadable line of the logs the file
                 // was written from, carried as such, is only counted in the summary, as the logs' reader counts it)
                 if (isUnknown(r) && r.file === arg) {
@@ -129,8 +136,8 @@ interface Printed {
  * Every record as a JSON line (an unreadable line as its `unknown` object), each piece printed once
  * the reader took the last; stops when the reader went away (`| head`: its choice).
  */
-async function printJson(logs: readonly OpenLog[], io: CliIO): Promise<Printed> {
-    const { outOfOrder, problems, counts } = await jsonLinesOf(logs, (piece) => print(io, piece.toString('utf8')));
+async function printJson(logs: readonly OpenLog[], io: CliIO, launcher: LauncherLinesQueue): Promise<Printed> {
+    const { outOfOrder, problems, counts } = await jsonLinesOf(logs, (piece) => print(io, piece.toString('utf8')), undefined, launcher);
     return { late: outOfOrder, problems, counts };
 }
 
@@ -185,6 +192,11 @@ class Story {
         this.ends.see(r);
         const told = this.teller.tell(r);
         return before + (told === undefined ? '' : safeName(told) + '\n');
+    }
+
+    /** A trace file's launcher end line, read at its place among the records (the file's time order): the story's line for it, or ''. */
+    launcherLine(l: LauncherFileLine): string {
+        return this.launcherLines([l]);
     }
 
     /** The story's lines for the launcher's end lines `lines` (a module it says ended on its own, when the line is taken). */

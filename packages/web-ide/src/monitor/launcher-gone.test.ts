@@ -5,6 +5,7 @@
  * names another pid, a module whose start was not read, or one already ended is not taken.
  */
 import { describe, it, expect } from 'vitest';
+import { traceFileToLogs } from '@contract-studio/build-service/trace';
 import { MonitorModel } from './monitor-model.js';
 import { launcherGoneSign } from './gone-signs.js';
 import { applyFolderLauncherLines, applyLauncherLines, launcherLinesOf } from './job-launcher-lines.js';
@@ -137,5 +138,47 @@ describe("a replay of a logs folder, with its contract-launch.log (the launcher'
     const n = run();
     applyFolderLauncherLines(n, [{ monoNs: '1250000000', line: 'module SRT (pid 99) died by signal 9 (Killed)' }]);
     expect(gone(n.stateAt(n.end))).toEqual([]);
+  });
+});
+
+describe("a replay of a trace file (`contract run --trace`) holding the launcher's end lines (`launcher_line`)", () => {
+  /** The trace file of run(): its records as JSON lines, `extra` (launcher lines) after SRT's last record. */
+  const file = (extra: object[]) => [
+    { kind: 'module_started', monoNs: '1000000000', wallTime: W, module: 'ORD', peer: '', port: null, size: 0, detail: 'pid=40 priority=90' },
+    { kind: 'module_started', monoNs: '1000100000', wallTime: W, module: 'SRT', peer: '', port: null, size: 0, detail: 'pid=41 priority=40' },
+    { kind: 'user', monoNs: '1200000000', wallTime: W, module: 'SRT', peer: '', port: null, size: 0, detail: 'sorting', fields: { event: 'sorting' } },
+    ...extra,
+    { kind: 'user', monoNs: '1500000000', wallTime: W, module: 'ORD', peer: '', port: null, size: 0, detail: 'tick', fields: { event: 'tick' } },
+  ].map((o) => JSON.stringify(o)).join('\n') + '\n';
+  /** The file replayed as the Monitor replays a trace file: its logs in the file's order, then its launcher lines. */
+  const replay = (text: string) => {
+    const logs = traceFileToLogs('run.jsonl', text);
+    const m = new MonitorModel({ checkpointEvery: 16 });
+    const lines = logs.files.map((f) => ({ name: f.name, lines: f.text.split('\n').slice(1), next: 0 }));
+    for (const i of logs.order) {
+      const l = lines[i]!;
+      m.pushLine(l.name, l.next + 2, l.lines[l.next++]!);
+    }
+    m.recordsEnded();
+    applyFolderLauncherLines(m, logs.launcherLines);
+    return { m, logs };
+  };
+
+  it('shows the module gone at the line\'s own time, the line read apart from the records', () => {
+    const { m, logs } = replay(file([{ kind: 'launcher_line', monoNs: '1300000000', line: 'module SRT (pid 41) died by signal 9 (Killed)' }]));
+    expect(logs.problems).toEqual([]);
+    expect(logs.launcherLines).toEqual([{ monoNs: '1300000000', line: 'module SRT (pid 41) died by signal 9 (Killed)' }]);
+    expect(m.marks.filter((k) => k.kind === 'crash')).toEqual([{ t: 300_000_000, kind: 'crash', where: 'SRT', label: 'SRT gone: contract-launch: module SRT (pid 41) died by signal 9 (Killed)' }]);
+    expect(gone(m.stateAt(299_000_000))).toEqual([]);
+    expect(gone(m.stateAt(m.end))).toEqual(['SRT']);
+  });
+
+  it('a forged line (another pid) is not believed; one in no launcher line\'s shape is named as no record', () => {
+    const { m, logs } = replay(file([
+      { kind: 'launcher_line', monoNs: '1300000000', line: 'module SRT (pid 99) died by signal 9 (Killed)' },
+      { kind: 'launcher_line', monoNs: '1300000000', line: 'SRT is gone, believe me' },
+    ]));
+    expect(logs.problems).toEqual(["line 5: a launcher_line that is none of the launcher's end lines"]);
+    expect(gone(m.stateAt(m.end))).toEqual([]);
   });
 });

@@ -482,9 +482,12 @@ export class MonitorController {
     const mine = asked ? ++this.picked : this.picked;
     const id = `file:${path}`;
     if (asked) await this.reading(`trace file ${path}`);
-    const { files, problems, skipped, unreadable, simulation, order, tooLarge } = await readTraceFile(path, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
+    const { files, problems, skipped, unreadable, simulation, order, tooLarge, launcherLines } = await readTraceFile(path, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
     // in the file's order, as `contract trace FILE` tells it (a simulation's records of one time: causes first)
     const { model, leftOut: unread } = await recordedRun(files, order);
+    // the launcher's end lines the file holds (`launcher_line`, written by `contract run --trace`): a
+    // module killed from outside shown gone at its end, as a logs folder's (its pid the module's own)
+    applyFolderLauncherLines(model, launcherLines);
     const notWhole = [...problems, ...unread];
     // counted as `contract trace` counts them: the logs' unreadable lines the file carries, and its own lines that are no record
     const label = `Trace file ${path}${simulation === undefined ? '' : simulation ? ` · simulation of ${simulation}` : ' · a simulation'} · ${recordCountsText(recordCounts(model, skipped + unreadable))}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}${tooLarge ? ` — \`contract trace ${path}\` tells a run of any length` : ''}`;
