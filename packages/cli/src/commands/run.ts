@@ -182,7 +182,7 @@ export const runCommand: Command = {
         '  --realtime: modules take their SCHED_FIFO priorities in the sandbox, bounded so that a runaway loop cannot freeze the machine (docs/sandbox.md "Real-time mode"); refused, saying why, where the host cannot grant it',
         '  --logs: folder the CSV logs (one per module) are copied to (default DIR/logs, never a link found there; collected from every sandbox, docker included);',
         '          it holds one run: the previous run\'s logs there are moved to OUT/previous/run-<time>/ first (never deleted)',
-        '  --trace: also write the records of those logs to FILE as JSON lines, in time order, as the run writes them (the live trace channel); at the end the same as `contract trace OUT --format json`. FILE is named *.jsonl, a regular file or none (never a link or a FIFO); it is emptied at the run\'s first record: a build that fails leaves it as it was',
+        '  --trace: also write the records of those logs to FILE as JSON lines, in time order, as the run writes them (the live trace channel); at the end the same as `contract trace OUT --format json` (the launcher\'s end lines among them, kind launcher_line). FILE is named *.jsonl, a regular file or none (never a link or a FIFO); it is emptied at the run\'s first record: a build that fails leaves it as it was',
         ...LIMIT_USAGE,
         ...COMMON_USAGE,
         '  module output is printed as `[MODULE] line`, launcher lines as they come',

@@ -29,7 +29,7 @@ export const traceCommand: Command = {
         'usage: contract trace LOGDIR|FILE.jsonl [--format text|json]',
         '  LOGDIR: the folder of a run\'s CSV logs (`contract run --logs`, default PROJECT/logs)',
         '  FILE.jsonl: a trace file (`contract run --trace`, `contract trace --format json`, `contract simulate --trace`), told in its order',
-        '  --format: text (default: the story, then a count of the records and, apart, of the unreadable lines) or json (one JSON object per record and line, time order; an unreadable line is an object of kind "unknown")',
+        '  --format: text (default: the story, then a count of the records and, apart, of the unreadable lines) or json (one JSON object per record and line, time order; an unreadable line is an object of kind "unknown"; the launcher\'s end lines, from LOGDIR\'s contract-launch.log or FILE, objects of kind "launcher_line")',
         '  a file named like a log that is not read (a symbolic link, a FIFO, socket or device) is left out with a warning',
         'exit status: 0 success, 1 no readable log in LOGDIR, or no record in its logs (in FILE.jsonl; unreadable lines are no records), 2 bad usage (LOGDIR missing, not a folder nor a .jsonl file)',
     ].join('\n'),
