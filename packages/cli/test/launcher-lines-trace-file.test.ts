@@ -15,7 +15,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { runCli } from '../src/cli.js';
 import { capture } from './capture-io.js';
 import { makeSeededScratch, removeSeededScratch } from './scratch.js';
-import { modulePid } from './module-pid.js';
+import { modulePid } from '@contract-studio/build-service/test-support/module-pid';
 
 const canRun = spawnSync('bwrap', ['--version']).status === 0;
 const TUTORIAL = fileURLToPath(new URL('../../../examples/tutorial', import.meta.url));

@@ -7,46 +7,14 @@
  * the line's time on the run's time line. Real IDE server and build service, headless Chromium.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { readdirSync, readFileSync, readlinkSync } from 'node:fs';
 import { spawnSync } from 'node:child_process';
+import { modulePid } from '@contract-studio/build-service/test-support/module-pid';
 import { startSession, openIde, openFile, shot, type Session } from './harness.js';
 
 const canBuild = spawnSync('bwrap', ['--version']).status === 0;
 /** One of the ports this test may use (E2E_LAUNCHER_GONE_PORT to choose another). */
 const PORT = Number(process.env.E2E_LAUNCHER_GONE_PORT ?? 7812);
 const MODULE = 'MAB';
-
-/** The parent of every process of this host, by pid. */
-function parents(): Map<number, number> {
-  const out = new Map<number, number>();
-  for (const d of readdirSync('/proc')) {
-    if (!/^\d+$/.test(d)) continue;
-    try {
-      const stat = readFileSync(`/proc/${d}/stat`, 'utf8');
-      out.set(Number(d), Number(stat.slice(stat.lastIndexOf(')') + 2).split(' ')[1]));
-    } catch { /* gone meanwhile */ }
-  }
-  return out;
-}
-
-/** The host pid of this test's run of module `name`: a descendant of this process (its IDE server's build service) whose executable is `…/<name>_mod/<name>`; undefined while none runs. */
-function modulePid(name: string): number | undefined {
-  const up = parents();
-  const mine = (pid: number) => {
-    for (let p = pid, n = 0; p > 1 && n < 64; p = up.get(p) ?? 0, n++) if (p === process.pid) return true;
-    return false;
-  };
-  for (const pid of up.keys()) {
-    let exe = '';
-    try {
-      exe = readlinkSync(`/proc/${pid}/exe`);
-    } catch {
-      continue;
-    }
-    if (exe.endsWith(`/${name}_mod/${name}`) && mine(pid)) return pid;
-  }
-  return undefined;
-}
 
 describe.skipIf(!canBuild)('a module SIGKILLed mid-run, followed live', () => {
   let s: Session;
