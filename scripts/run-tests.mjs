@@ -78,7 +78,7 @@ const CPU_ONLY = new Set(['packages/conventions', 'packages/language', 'packages
  * after the first and the CPUs were still idle 40 % of the time (25.5 min of CPU in 21 min on two
  * cores). Three lanes of about the same length in a full run (lane 1 1,114 s and lane 2 1,094 s
  * when the third held only the IDE's seven longest browser files, 491 s): the C runtime and the
- * build service; the CLI and the rest of the IDE; the IDE's twenty longest browser files (each
+ * build service; the CLI and the rest of the IDE; twenty of the IDE's browser files, its longest (each
  * has its own server on its own port and its own copy of the workspace), the installed CLI and
  * the CLI's Docker runs, the simulator. Packing and installing the CLI is about a minute of CPU: at
  * nice 19 in the background it once waited over five minutes for a CPU, hence its place in a lane.
