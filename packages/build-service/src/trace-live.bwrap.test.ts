@@ -60,7 +60,7 @@ test('the tutorial in bwrap: the live trace is the collected logs, in mono_ns or
 
   // per file: exactly the record lines of the collected log, in file order
   const trace = traceLines(live);
-  const listing = job.artifacts as { files: { name: string }[] };
+  const listing = moduleLogs(job.artifacts as { files: { name: string }[] });
   expect(listing.files).toHaveLength(9);
   let total = 0;
   for (const f of listing.files) {
@@ -120,7 +120,7 @@ test('Stop mid-run: the launcher stops the tutorial as at the end of a run; logs
 
   // every log is whole: it ends with its module's exit record, and the live trace has each of its records
   const trace = traceLines(live);
-  const listing = job.artifacts as { files: { name: string }[] };
+  const listing = moduleLogs(job.artifacts as { files: { name: string }[] });
   expect(listing.files).toHaveLength(9);
   const texts = new Map<string, string>();
   for (const f of listing.files) {
@@ -137,13 +137,19 @@ test('Stop mid-run: the launcher stops the tutorial as at the end of a run; logs
   for (const [schema, n] of undone) expect(texts.get('ORD')!, schema).toContain(`,scheduler,,,0,deactivate ${schema} (activation #${n} from SUP)\n`);
 }, 240_000);
 
+/** A job's collected module logs (its CSV files), the launcher's own lines file among the artifacts too. */
+function moduleLogs(artifacts: { files: { name: string }[] }): { files: { name: string }[] } {
+  expect(artifacts.files.map((f) => f.name)).toContain('contract-launch.log');
+  return { files: artifacts.files.filter((f) => f.name.endsWith('.csv')) };
+}
+
 /**
  * The 9 collected logs of a job, by module, each checked to end with its module's exit record but
  * `killed`'s (a module SIGKILLed: its log does not); `context` is said with a failure. `why`: the
  * reason the launcher's KILL must give in each of those logs (the service's stop said why).
  */
 async function logsEndingWithExit(id: string, job: Record<string, any>, killed?: string, context = '', why?: string): Promise<void> {
-  const listing = job.artifacts as { files: { name: string }[] };
+  const listing = moduleLogs(job.artifacts as { files: { name: string }[] });
   expect(listing.files).toHaveLength(9);
   for (const f of listing.files) {
     const text = await (await fetch(`${served.url}/api/jobs/${id}/artifacts/${encodeURIComponent(f.name)}`)).text();

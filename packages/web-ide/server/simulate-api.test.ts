@@ -128,7 +128,8 @@ describe('POST /api/simulate', () => {
     const r = json as SimulateResponse;
     expect(r.passed).toBe(true);
     const ev = r.steps.find((s) => s.kind === 'event')!;
-    expect(ev.records).toContainEqual({ timeNs: 300_000_000, seq: expect.any(Number), module: 'SUP', kind: 'event_received', peer: 'MAA', port: 2, detail: 'from_port=2 latency_ns=0' });
+    // the value and the rules it changed, as a run's supervisor writes them
+    expect(ev.records).toContainEqual({ timeNs: 300_000_000, seq: expect.any(Number), module: 'SUP', kind: 'event_received', peer: 'MAA', port: 2, detail: expect.stringMatching(/^from_port=2 latency_ns=0 taken_ns=300000000 rules=\d+ value="disconnected"$/) });
     expect(ev.records).toContainEqual(expect.objectContaining({ module: 'ORD', kind: 'ord_release', peer: 'MSA' }));
     const items = (s: SimulateResponse['steps'][number]) => s.rules.length + s.actions.length + s.schemas.length + s.locals.length + (s.records?.length ?? 0) + (s.log?.length ?? 0);
     const kept = r.steps.reduce((n, s) => n + items(s), 0);

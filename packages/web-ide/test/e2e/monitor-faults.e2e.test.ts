@@ -71,7 +71,7 @@ describe('Monitor: an event no one received, a module that crashed', () => {
     // the row comes first under Deliveries, its tooltip in contract trace's words
     expect(await page.locator('.monitor-flows > :first-child').getAttribute('title')).toBe('event GCS:1 posted with no subscriber: no one received it (no supervisor or module subscribed to GCS:1 then)');
     // an overrun listed under its schema: its tooltip is ORD's line, as the record says it
-    expect(await page.locator('.monitor-pschema[data-periodic=altHold] .overrun').last().getAttribute('title')).toBe('overrun: altHold cycle still running, release skipped');
+    expect(await page.locator('.monitor-pschema[data-periodic=altHold] .overrun').last().getAttribute('title')).toBe('overrun: altHold cycle still running, release skipped (click: the cursor goes there)');
     await page.locator('.monitor-flows').scrollIntoViewIfNeeded();
     await shot(page, 'monitor-faults-01-recorded');
     // from the start, ] steps mark by mark to the event no one received, then on to the crash: each said under the strip
