@@ -71,7 +71,7 @@ describe.each(['bwrap', ...(docker.available ? ['docker'] : [])])('the tutorial 
     expectTutorialRan(first.job, first.lines);
     expect(first.lines.some((l) => /modules pinned to CPUs/.test(l.line))).toBe(false); // no CPUS: the system places them
     await expectTutorialLogs(first.job.id);
-    expect(first.job.artifacts.files.length).toBe(9);
+    expect(first.job.artifacts.files.length).toBe(10); // 9 module logs and the launcher's own lines
     const again = await runJob({ action: 'build', sandbox, project: { dir: TUTORIAL_DIR } });
     expect(again.job.status).toBe('succeeded');
     expect(again.lines.some((l) => l.line === 'project unchanged since the last build: generation skipped')).toBe(true);
