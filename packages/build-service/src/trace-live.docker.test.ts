@@ -69,6 +69,12 @@ async function artifactText(id: string, name: string): Promise<string> {
 
 if (!docker.available) test.skip(`docker: SKIPPED — ${docker.reason}`, () => {});
 
+/** A job's collected module logs (its CSV files), the launcher's own lines file among the artifacts too. */
+function moduleLogs(artifacts: { files: { name: string }[] }): { files: { name: string }[] } {
+  expect(artifacts.files.map((f) => f.name)).toContain('contract-launch.log');
+  return { files: artifacts.files.filter((f) => f.name.endsWith('.csv')) };
+}
+
 describe.skipIf(!docker.available)('live trace in docker', () => {
   test('the tutorial: records arrive while the run runs, in mono_ns order, equal to the collected logs', async () => {
     const files = await tutorialFiles();
@@ -93,7 +99,7 @@ describe.skipIf(!docker.available)('live trace in docker', () => {
 
     // per file: exactly the collected log's records, in file order
     const trace = traceLines(events);
-    const listing = job.artifacts as { files: { name: string }[] };
+    const listing = moduleLogs(job.artifacts as { files: { name: string }[] });
     expect(listing.files).toHaveLength(9);
     let total = 0;
     for (const f of listing.files) {
@@ -316,7 +322,7 @@ async function stopMidRun(url: string): Promise<void> {
   // the cancel queued as the stop's reason
   expect(lines).toContain('stopping: the job was cancelled');
   const trace = traceLines(events);
-  const listing = job.artifacts as { files: { name: string }[] };
+  const listing = moduleLogs(job.artifacts as { files: { name: string }[] });
   expect(listing.files).toHaveLength(9);
   for (const f of listing.files) {
     const text = await (await fetch(`${url}/api/jobs/${id}/artifacts/${encodeURIComponent(f.name)}`)).text();

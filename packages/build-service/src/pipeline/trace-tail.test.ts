@@ -452,7 +452,8 @@ describe('TraceTail on a folder written while it is read', () => {
     writeFileSync(b, `${CSV_HEADER}\n`);
     const tail = await TraceTail.start(work, sink, fast);
     appendFileSync(a, `${rec(2, 'A')}\n`);
-    await sleep(40);
+    // read before the truncation (a fixed sleep lost this race on a loaded machine)
+    await expect.poll(() => traced.length, { timeout: 5_000, interval: 10 }).toBe(1);
     truncateSync(a, 0);
     appendFileSync(a, `${rec(3, 'A')}\n`);
     appendFileSync(b, `${rec(4, 'B')}\n`);
