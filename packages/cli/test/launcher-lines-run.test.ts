@@ -16,7 +16,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { runCli } from '../src/cli.js';
 import { capture } from './capture-io.js';
 import { makeSeededScratch, removeSeededScratch } from './scratch.js';
-import { modulePid } from '@contract-studio/build-service/test-support/module-pid';
+import { killModuleOnceRunning } from '@contract-studio/build-service/test-support/module-pid';
 
 const canRun = spawnSync('bwrap', ['--version']).status === 0;
 const TUTORIAL = fileURLToPath(new URL('../../../examples/tutorial', import.meta.url));
@@ -42,19 +42,9 @@ describe.skipIf(!canRun)('a module SIGKILLed from outside mid-run, recorded by c
     it('contract run says its end when it happens; contract trace tells it gone at the kill; a forged line is not believed', async () => {
         const io = capture(root);
         const running = runCli(['run', 'tut', '--sandbox', 'bwrap', '--duration', '4s', '--logs', 'tut-logs'], io);
-        let killedAt = 0;
-        const killer = (async () => {
-            for (let i = 0; i < 1200 && !killedAt; i++) {
-                await new Promise((r) => setTimeout(r, 50));
-                const pid = modulePid('MAB');
-                if (pid === undefined) continue;
-                await new Promise((r) => setTimeout(r, 1000));
-                process.kill(pid, 'SIGKILL');
-                killedAt = Date.now();
-            }
-        })();
+        const killer = killModuleOnceRunning('MAB', 1000);
         const code = await running;
-        await killer;
+        const killedAt = await killer;
         expect(killedAt).toBeGreaterThan(0);
         expect(code).not.toBe(0); // a module killed by a SIGKILL the launcher did not send fails the run
         expect(io.stderr).toMatch(/\ncontract-launch: module MAB \(pid \d+\) died by signal 9 \(Killed\)\ncontract run: MAB ended mid-run: died by signal 9 \(Killed\) \(a signal the launcher did not send\); the other modules go on\n/);

@@ -15,7 +15,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { runCli } from '../src/cli.js';
 import { capture } from './capture-io.js';
 import { makeSeededScratch, removeSeededScratch } from './scratch.js';
-import { modulePid } from '@contract-studio/build-service/test-support/module-pid';
+import { killModuleOnceRunning } from '@contract-studio/build-service/test-support/module-pid';
 
 const canRun = spawnSync('bwrap', ['--version']).status === 0;
 const TUTORIAL = fileURLToPath(new URL('../../../examples/tutorial', import.meta.url));
@@ -35,19 +35,9 @@ describe.skipIf(!canRun)('a module SIGKILLed from outside mid-run, recorded by c
     it('the trace file holds the launcher\'s end line in time order; contract trace FILE tells it gone at the kill; a forged line is not believed', async () => {
         const io = capture(root);
         const running = runCli(['run', 'tut', '--sandbox', 'bwrap', '--duration', '4s', '--logs', 'tut-logs', '--trace', 'run.jsonl'], io);
-        let killedAt = 0;
-        const killer = (async () => {
-            for (let i = 0; i < 1200 && !killedAt; i++) {
-                await new Promise((r) => setTimeout(r, 50));
-                const pid = modulePid('MAB');
-                if (pid === undefined) continue;
-                await new Promise((r) => setTimeout(r, 1000));
-                process.kill(pid, 'SIGKILL');
-                killedAt = Date.now();
-            }
-        })();
+        const killer = killModuleOnceRunning('MAB', 1000);
         const code = await running;
-        await killer;
+        const killedAt = await killer;
         expect(killedAt).toBeGreaterThan(0);
         expect(code, io.stderr).not.toBe(0);
         expect(io.stderr).toMatch(/\ncontract-launch: module MAB \(pid \d+\) died by signal 9 \(Killed\)\n/);

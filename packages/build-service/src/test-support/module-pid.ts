@@ -35,3 +35,20 @@ export function modulePid(name: string): number | undefined {
     }
     return undefined;
 }
+
+/**
+ * Kills module `name` of this test's run with SIGKILL, from outside as a user's `kill -9` would,
+ * `afterMs` after it is first seen running (looked for every 50 ms, for a minute at most): the
+ * time of the kill (Date.now()), or 0 when it never ran.
+ */
+export async function killModuleOnceRunning(name: string, afterMs: number): Promise<number> {
+    for (let i = 0; i < 1200; i++) {
+        await new Promise((r) => setTimeout(r, 50));
+        const pid = modulePid(name);
+        if (pid === undefined) continue;
+        await new Promise((r) => setTimeout(r, afterMs));
+        process.kill(pid, 'SIGKILL');
+        return Date.now();
+    }
+    return 0;
+}
