@@ -8,7 +8,6 @@
  * (the kernel's period timer). Silences of a loaded machine end anywhere; those of an ORD with
  * nothing to do (between the ticks of a 100 ms or 1 s schema) are no throttling, wherever they end.
  */
-import { MinHeap } from '../trace/min-heap.js';
 
 /** How to give a throttled architecture more: the budget is per CPU, and fixed (REALTIME_BOUNDS). */
 export const THROTTLED_ADVICE = 'Give it more CPUs to share it (contract run --cpus 0,1: the budget is on each CPU), or do not pin it (no --cpus); ' +
@@ -44,17 +43,53 @@ export interface Throttling {
   silences: number;
 }
 
-/** One of ORD's records: when it was written, and when the work it did was due (Infinity: no time said). */
-interface Timed {
-  t: number;
-  due: number;
-}
-
 /**
  * Records held to put ORD's lines in time order before their silences are measured: a log is in
  * time order but for two threads writing within a millisecond (log-clock.ts BACK_TOLERANCE_NS).
  */
 const REORDER = 1024;
+
+/**
+ * The last REORDER records read, in time order: each of ORD's records as its time (`t`) and when the
+ * work it did was due (`due`, Infinity: no time said), in two rings of numbers. A record goes in from
+ * the back, past the later ones (a log in order: none), so a log in order costs no search and no
+ * object per record; the earliest comes out first, records of one time in the order they were read.
+ */
+class ReorderWindow {
+  private readonly ts = new Float64Array(REORDER + 1);
+  private readonly dues = new Float64Array(REORDER + 1);
+  private head = 0;
+  size = 0;
+
+  /** Puts a record in its place; returns false when the window is over REORDER (take the earliest out). */
+  push(t: number, due: number): boolean {
+    const { ts, dues } = this;
+    const cap = ts.length;
+    let j = this.size;
+    // shift the records later than t one place back, from the back
+    while (j > 0) {
+      const prev = (this.head + j - 1) % cap;
+      if (ts[prev]! <= t) break;
+      const at = (this.head + j) % cap;
+      ts[at] = ts[prev]!;
+      dues[at] = dues[prev]!;
+      j--;
+    }
+    const at = (this.head + j) % cap;
+    ts[at] = t;
+    dues[at] = due;
+    this.size++;
+    return this.size <= REORDER;
+  }
+
+  /** The earliest record's time and due, taken out (call only when size > 0). */
+  shift(out: { t: number; due: number }): void {
+    out.t = this.ts[this.head]!;
+    out.due = this.dues[this.head]!;
+    this.head = (this.head + 1) % this.ts.length;
+    this.size--;
+  }
+}
 
 const ORD_RELEASE = Buffer.from('ord_release');
 const SCHEDULER = Buffer.from('scheduler');
@@ -105,6 +140,15 @@ function fieldIs(line: Uint8Array, from: number, to: number, word: Buffer): bool
   return true;
 }
 
+/** A schema's ticks as its releases show them: a cycle's tick, and the period (0 until two cycles were seen); its name as text and bytes. */
+interface Grid {
+  name: string;
+  bytes: Buffer;
+  cycle: number;
+  tick: number;
+  periodNs: number;
+}
+
 /**
  * Reads ORD's CSV log as it is given, chunk by chunk (`add`), in bounded memory whatever its size
  * (a 256 MiB log is millions of records): of each line, its first LINE_HELD bytes, read in place:
@@ -121,7 +165,9 @@ export class ThrottlingReader {
   private readonly totalNs: Float64Array;
   private silences = 0;
   /** The records read and not yet measured (the earliest goes first). */
-  private readonly pending = new MinHeap<Timed>((a, b) => a.t < b.t);
+  private readonly pending = new ReorderWindow();
+  /** The record taken out of the window to be measured (one object, reused). */
+  private readonly next = { t: 0, due: Infinity };
   private last = -1;
   /** The last silence met, while the records after it may still say work was due in it. */
   private open: { from: number; to: number; dueFrom: number } | undefined;
@@ -132,8 +178,8 @@ export class ThrottlingReader {
   private len = 0;
   /** The most a throttled silence can last: the part of a period the budget does not give. */
   private readonly mostNs: number;
-  /** Each schema's ticks as its releases show them: a cycle's tick, and the period (0 until two cycles were seen). */
-  private readonly grids = new Map<string, { cycle: number; tick: number; periodNs: number }>();
+  /** Each schema's ticks (a few schemas: found by their name's bytes, no text made of a release line). */
+  private readonly grids: Grid[] = [];
 
   /**
    * `periodNs`: the budget's period; `runtimeNs`: what it gives of each (a silence is counted for
@@ -205,8 +251,7 @@ export class ThrottlingReader {
         if (Number.isFinite(tick) && Number.isFinite(cd)) due = tick + cd;
       }
     }
-    this.pending.push({ t: value, due });
-    if (this.pending.size > REORDER) this.measure(this.pending.pop()!);
+    if (!this.pending.push(value, due)) this.measureNext();
   }
 
   /** An `ord_release`'s detail, line[from, to) (`schema=S cycle=k tick_ns=T ...`): its schema's grid of ticks followed. */
@@ -218,10 +263,12 @@ export class ThrottlingReader {
     while (space < to && line[space] !== 32) space++;
     const cycle = numberAfter(line, from, to, CYCLE);
     if (space >= to || !Number.isFinite(cycle) || !Number.isFinite(tick)) return;
-    const name = latin1(line, nameFrom, space);
-    const g = this.grids.get(name);
+    const g = this.grids.find((x) => fieldIs(line, nameFrom, space, x.bytes));
     if (!g) {
-      if (this.grids.size < GRIDS_FOLLOWED) this.grids.set(name, { cycle, tick, periodNs: 0 });
+      if (this.grids.length < GRIDS_FOLLOWED) {
+        const bytes = Buffer.from(line.subarray(nameFrom, space));
+        this.grids.push({ name: bytes.toString('latin1'), bytes, cycle, tick, periodNs: 0 });
+      }
       return;
     }
     // a later cycle of the same activation gives the period; cycle 0 again (a new activation) keeps it
@@ -233,21 +280,27 @@ export class ThrottlingReader {
   /** When the tick of a `missed tick of S (cycle k)` line was due, on S's grid (Infinity when it is not known). */
   private missedTickDue(detail: string): number {
     const m = MISSED_TICK.exec(detail);
-    const g = m ? this.grids.get(m[1]!) : undefined;
+    const g = m ? this.grids.find((x) => x.name === m[1]) : undefined;
     if (!g || g.periodNs <= 0) return Infinity;
     return g.tick + (Number(m![2]) - g.cycle) * g.periodNs;
   }
 
+  /** The earliest record held, measured. */
+  private measureNext(): void {
+    this.pending.shift(this.next);
+    this.measure(this.next.t, this.next.due);
+  }
+
   /** The next record in order: the silence before it, when long enough, opened; the work it did, if due in the open silence, noted. */
-  private measure(r: Timed): void {
+  private measure(t: number, due: number): void {
     const last = this.last;
-    this.last = r.t;
-    if (last >= 0 && r.t - last >= SILENCE_NS) {
+    this.last = t;
+    if (last >= 0 && t - last >= SILENCE_NS) {
       this.close();
-      this.open = { from: last, to: r.t, dueFrom: Infinity };
+      this.open = { from: last, to: t, dueFrom: Infinity };
     }
     const o = this.open;
-    if (o && r.due > o.from && r.due < o.to && r.due < o.dueFrom) o.dueFrom = r.due;
+    if (o && due > o.from && due < o.to && due < o.dueFrom) o.dueFrom = due;
   }
 
   /** The open silence counted, if ORD had work due DUE_NS or more before its end. */
@@ -268,7 +321,7 @@ export class ThrottlingReader {
    */
   result(): Throttling | undefined {
     if (this.len > 0) this.endHeld();
-    while (this.pending.size) this.measure(this.pending.pop()!);
+    while (this.pending.size) this.measureNext();
     this.close();
     const { bins, count } = this;
     const near = (c: number, add: (bin: number) => number): number => {
