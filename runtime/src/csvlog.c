@@ -288,15 +288,17 @@ static char *put_u64(char *p, unsigned long long v)
 #define CUT_MARK "\xe2\x80\xa6"
 
 /* At most `max` bytes of s as a CSV field (quoted, quotes doubled, line ends as spaces: at most
- * 2 * (max + 3) + 2 bytes). `mark`: a longer s is cut before the UTF-8 character the bound would
- * split, and ends with CUT_MARK (the reader sees the cut); else it is cut at `max`. */
+ * 2 * max + 2 bytes). `mark`: a longer s is cut before the UTF-8 character the bound less CUT_MARK's
+ * 3 bytes would split, and ends with CUT_MARK (the reader sees the cut: max bytes at most, the mark
+ * included); else it is cut at `max`. */
 static char *put_field(char *p, const char *s, size_t max, int mark)
 {
     if (!s) return p;
     size_t n = strnlen(s, max + 1);
     int cut = n > max;
     if (cut) {
-        n = max;
+        /* with its mark the field stays within max bytes: the text is cut at max - 3 */
+        n = mark ? max - (sizeof CUT_MARK - 1) : max;
         if (mark) while (n > 0 && ((unsigned char)s[n] & 0xC0) == 0x80) n--; /* s[n]: inside a character */
     }
     const char *tail = cut && mark ? CUT_MARK : "";
@@ -419,6 +421,35 @@ static void warn_long_event(const char *event)
             g_rt.name[0] ? g_rt.name : "libmodule", EVENT_MAX, EVENT_MAX, event);
 }
 
+/* Whether `event` is a word the trace readers take as a record's event: a letter or `_`, then
+ * letters, digits, `_`, `.` or `-` (docs/runtime-api.md, the `user` kind). */
+static int event_is_word(const char *event)
+{
+    /* ASCII only, whatever the locale (the readers' isUserEventName) */
+    for (const char *q = event; *q; q++) {
+        char c = *q;
+        int letter = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_';
+        if (!(letter || (q > event && ((c >= '0' && c <= '9') || c == '.' || c == '-')))) return 0;
+    }
+    return event[0] != '\0';
+}
+
+/* An event name that is no word is written as given (nothing of it is lost), but the readers cannot
+ * take its line as a record: said on stderr for each new such name, the first 8 of a process (a name
+ * logged again and again is said once: the last one said is remembered). */
+#define NO_WORD_WARNINGS 8
+static void warn_no_word(const char *event)
+{
+    static char last[EVENT_MAX + 1];
+    static int said;
+    if (said >= NO_WORD_WARNINGS || strncmp(last, event, EVENT_MAX) == 0) return;
+    said++;
+    snprintf(last, sizeof last, "%s", event);
+    fprintf(stderr, "%s: warning: ContractLog: the event name '%.*s' is no word (a letter or '_', then letters, digits, '_', '.' or '-'): "
+            "contract trace and the Monitor will read its records as unreadable lines (give your records names that are words)\n",
+            g_rt.name[0] ? g_rt.name : "libmodule", EVENT_MAX, event);
+}
+
 /* The engine whose own record kind `event` is (RT_ENGINE_NONE: anyone's). The trace readers take
  * these kinds from that engine only (docs/runtime-api.md "Whose records, and their times"). */
 void rt_log_engine(int engine) { g_rt.engine = engine; }
@@ -451,6 +482,7 @@ void ContractLog(const char *event, const char *peer, int port, size_t size, con
         return;
     }
     if (event && strnlen(event, EVENT_MAX + 1) > EVENT_MAX) warn_long_event(event);
+    if (event && !event_is_word(event)) warn_no_word(event);
     if (__atomic_load_n(&log_capped, __ATOMIC_RELAXED)) {
         log_records++;
         log_dropped++;

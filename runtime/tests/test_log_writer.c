@@ -355,11 +355,15 @@ void test_csv_log_record_bounds(void)
     memset(detail, '"', 400); detail[400] = '\0';
     /* records of many sizes, so that one starts anywhere near a 64 KiB buffer's end */
     for (int i = 0; i < 4000; i++) ContractLog(event, peer, 7, 9, detail + (i % 97));
-    /* 500 bytes: cut at 400, the cut said; a 3-byte character across the bound is not split */
+    /* 500 bytes: cut to 400 with the mark that says so (397 bytes of text, then the 3-byte mark);
+     * a 3-byte character across the cut is not split */
     char longer[501];
     memset(longer, 'x', 500); longer[500] = '\0';
-    memcpy(longer + 398, "\xe2\x82\xac", 3); /* a euro sign on bytes 398..400 */
+    memcpy(longer + 396, "\xe2\x82\xac", 3); /* a euro sign on bytes 396..398 */
     ContractLog("long_detail", "", -1, 0, longer);
+    char plain[501];
+    memset(plain, 'z', 500); plain[500] = '\0';
+    ContractLog("plain_long_detail", "", -1, 0, plain);
     char exact[401];
     memset(exact, 'y', 400); exact[400] = '\0';
     ContractLog("exact_detail", "", -1, 0, exact);
@@ -378,15 +382,51 @@ void test_csv_log_record_bounds(void)
     }
     CHECK_MSG(whole == 4000, "%d of 4000 quoted records read back", whole);
     char want[500];
-    memset(want, 'x', 398);
-    memcpy(want + 398, "\xe2\x80\xa6\n", 5); /* 398 x, then … (the euro sign would not fit whole) */
+    memset(want, 'x', 396);
+    memcpy(want + 396, "\xe2\x80\xa6\n", 5); /* 396 x, then … (the euro sign would not fit whole) */
     const char *cut = strstr(log, ",long_detail,,,0,");
-    CHECK(cut && strncmp(cut + strlen(",long_detail,,,0,"), want, 398 + 4) == 0);
+    CHECK(cut && strncmp(cut + strlen(",long_detail,,,0,"), want, 396 + 4) == 0);
+    memset(want, 'z', 397);
+    memcpy(want + 397, "\xe2\x80\xa6\n", 5); /* 397 z, then …: 400 bytes, the mark included */
+    const char *plain_cut = strstr(log, ",plain_long_detail,,,0,");
+    CHECK(plain_cut && strncmp(plain_cut + strlen(",plain_long_detail,,,0,"), want, 397 + 4) == 0);
     const char *ex = strstr(log, ",exact_detail,,,0,");
     CHECK(ex && strncmp(ex + strlen(",exact_detail,,,0,"), exact, 400) == 0 && ex[strlen(",exact_detail,,,0,") + 400] == '\n');
     memset(want, 'n', 64);
     memcpy(want + 64, ",,,0,long name\n", 16);
     CHECK(strstr(log, want) != NULL);
+    free(log);
+    rt_log_close();
+    h_teardown();
+}
+
+/* An event name that is no word (`9bad`: the readers take its line as unreadable) is written as
+ * given, nothing lost, and said on stderr at run time (once however often it is logged), not first
+ * by the trace's reader. */
+void test_csv_log_event_not_a_word(void)
+{
+    REQUIRE(h_setup("lognoword") == 0);
+    REQUIRE(rt_log_open() == 0);
+    char said[1024];
+    int saved = h_stderr_to_file(said, sizeof said);
+    REQUIRE(saved >= 0);
+    ContractLog("fine_name.v2-b", "", -1, 0, "a word");
+    for (int i = 0; i < 3; i++) ContractLog("9bad", "", -1, 0, "bad name");
+    ContractLog("has space", "", -1, 0, "bad too");
+    h_stderr_back(saved);
+    ContractLogFlush();
+    char *err = h_read_file(said);
+    REQUIRE(err);
+    const char *first = strstr(err, "warning: ContractLog: the event name '9bad' is no word");
+    CHECK_MSG(first != NULL && strchr(first, '\n') && strstr(strchr(first, '\n'), "'9bad'") == NULL, "said once: %s", err);
+    CHECK_MSG(strstr(err, "the event name 'has space' is no word") != NULL, "stderr: %s", err);
+    CHECK_MSG(strstr(err, "fine_name") == NULL, "a word is not said: %s", err);
+    free(err);
+    char csv[1024];
+    REQUIRE(h_find_log_file("tester_", ".csv", csv, sizeof csv));
+    char *log = h_read_file(csv);
+    REQUIRE(log);
+    CHECK(strstr(log, ",9bad,,,0,bad name\n") != NULL && strstr(log, ",has space,,,0,bad too\n") != NULL);
     free(log);
     rt_log_close();
     h_teardown();

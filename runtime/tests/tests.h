@@ -57,6 +57,7 @@ void test_csv_log_writer_thread(void);
 void test_csv_log_writer_refused(void);
 void test_csv_log_fork_child(void);
 void test_csv_log_record_bounds(void);
+void test_csv_log_event_not_a_word(void);
 void test_csv_log_engine_kinds(void);
 void test_csv_log_disk_full(void);
 void test_csv_log_disk_reserve(void);
@@ -118,6 +119,7 @@ static const TestCase ALL_TESTS[] = {
     { "csv_log_writer_refused", test_csv_log_writer_refused },
     { "csv_log_fork_child", test_csv_log_fork_child },
     { "csv_log_record_bounds", test_csv_log_record_bounds },
+    { "csv_log_event_not_a_word", test_csv_log_event_not_a_word },
     { "csv_log_engine_kinds", test_csv_log_engine_kinds },
     { "csv_log_disk_full", test_csv_log_disk_full },
     { "csv_log_disk_reserve", test_csv_log_disk_reserve },
