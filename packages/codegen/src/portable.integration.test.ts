@@ -3,25 +3,21 @@
  * machine, so the runtime's location is a build-time input, never written from where the generator
  * ran (docs/architecture.md, Seam 3).
  */
-import { cpSync, existsSync, mkdirSync, readdirSync } from 'node:fs';
-import { join, resolve } from 'node:path';
-import { fileURLToPath } from 'node:url';
+import { existsSync, mkdirSync } from 'node:fs';
+import { join } from 'node:path';
 import { spawnSync } from 'node:child_process';
 import { loadWorkspace } from '@contract-studio/language/node';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { generateArchitecture } from './generate-architecture.js';
 import { DEFAULT_RUNTIME } from './generators/build-settings.js';
 import { readTree, tempDir } from './test-support/temp-dir.js';
+import { EXAMPLES, copyExample as copyClone, inAClone } from './test-support/tutorial-project.js';
+import { REGION_COPY_NAME } from './writer/index.js';
 
-const EXAMPLES = resolve(fileURLToPath(new URL('.', import.meta.url)), '..', '..', '..', 'examples');
-const BUILD_OUTPUT = /\/(run|logs)(\/|$)|_mod\/[A-Z]{3}$|tools\/control[A-Z]{3}$/;
-
-/** A copy of an example's sources (and of its committed src-gen when `withSrcGen`) into `dir`. */
+/** A copy of an example as a fresh clone has it into `dir`: its sources, and its committed src-gen when `withSrcGen`. */
 function copyExample(example: string, dir: string, withSrcGen: boolean): void {
     mkdirSync(dir, { recursive: true });
-    const from = join(EXAMPLES, example);
-    for (const f of readdirSync(from)) if (f.endsWith('.contract')) cpSync(join(from, f), join(dir, f));
-    if (withSrcGen) cpSync(join(from, 'src-gen'), join(dir, 'src-gen'), { recursive: true, filter: (src) => !BUILD_OUTPUT.test(src) });
+    copyClone(example, dir, withSrcGen);
 }
 
 async function generate(dir: string): Promise<ReturnType<typeof generateArchitecture>> {
@@ -37,16 +33,32 @@ describe('generated trees do not depend on the folder or the machine', () => {
     afterAll(() => cleanup());
 
     for (const example of ['tutorial', 'mobile-robot']) {
-        it(`${example}: two copies at different depths regenerate to the committed bytes (nothing written)`, async () => {
+        it(`${example}: two fresh clones at different depths regenerate to the committed bytes: the first generate writes only the copy of the regions' code, the second nothing`, async () => {
             const committed = readTree(join(EXAMPLES, example, 'src-gen'));
-            for (const f of [...committed.keys()]) if (BUILD_OUTPUT.test(`/${f}`)) committed.delete(f);
+            for (const f of [...committed.keys()]) if (!inAClone(f)) committed.delete(f);
+            expect(committed.has(REGION_COPY_NAME)).toBe(false);
+            const manifest = JSON.parse(committed.get('.contract-manifest.json')!) as { userCode: Record<string, string[]> };
+            expect(Object.keys(manifest.userCode).length).toBeGreaterThan(0);
             for (const dir of [join(root, `${example}-a`), join(root, 'x', 'y', 'z', `${example}-b`)]) {
                 copyExample(example, dir, true);
-                const report = await generate(dir);
-                expect(report.errors).toEqual([]);
-                expect(report.updated).toEqual([]);
-                expect(report.filesWritten).toBe(0);
-                expect(readTree(join(dir, 'src-gen'))).toEqual(committed);
+                const first = await generate(dir);
+                expect(first.errors).toEqual([]);
+                expect(first.created).toEqual([]);
+                expect(first.updated).toEqual([]);
+                expect(first.orphaned).toEqual([]);
+                expect(first.filesWritten).toBe(1); // the copy, written from the committed files
+                const tree = readTree(join(dir, 'src-gen'));
+                const { [REGION_COPY_NAME]: copy, ...generated } = Object.fromEntries(tree);
+                expect(new Map(Object.entries(generated))).toEqual(committed);
+                // it holds the code of every region the manifest records as holding code, as the committed files hold it
+                const held = (JSON.parse(copy!) as { files: Record<string, Record<string, string>> }).files;
+                expect(Object.fromEntries(Object.entries(held).map(([f, regions]) => [f, Object.keys(regions).sort()])))
+                    .toEqual(Object.fromEntries(Object.entries(manifest.userCode).map(([f, ids]) => [f, [...ids].sort()])));
+                for (const [f, regions] of Object.entries(held)) for (const body of Object.values(regions)) expect(committed.get(f), f).toContain(body);
+                const second = await generate(dir);
+                expect(second.errors).toEqual([]);
+                expect(second.filesWritten).toBe(0);
+                expect(readTree(join(dir, 'src-gen'))).toEqual(tree);
             }
         }, 120_000);
     }

@@ -7,6 +7,7 @@ import { parseRegions } from './regions/parse-regions.js';
 import { readTree, tempDir } from './test-support/temp-dir.js';
 import { RUNTIME_DIR, ensureRuntimeLibrary, run } from './test-support/c-toolchain.js';
 import { copyTutorial } from './test-support/tutorial-project.js';
+import { REGION_COPY_NAME } from './writer/index.js';
 
 const MODULES = 'generated/architecture/modules';
 
@@ -23,14 +24,22 @@ describe('the tutorial project (examples/tutorial)', () => {
     });
     afterAll(() => cleanup());
 
-    it('committed src-gen is what the generator writes: regenerating it changes nothing', async () => {
+    it('committed src-gen is what the generator writes: regenerating a fresh clone changes no generated file and writes only the copy of the regions\' code; again, nothing', async () => {
         const ws = await loadWorkspace(dir);
         expect(ws.diagnostics.filter((d) => d.severity === 'error')).toEqual([]);
         const before = readTree(join(dir, 'src-gen'));
+        expect(before.has(REGION_COPY_NAME)).toBe(false); // the tutorial's .gitignore lists it: a clone has none
         const report = generateArchitecture(ws.documents, join(dir, 'src-gen'));
         expect(report.errors).toEqual([]);
-        expect(report.filesWritten).toBe(0);
-        expect(readTree(join(dir, 'src-gen'))).toEqual(before);
+        expect([...report.created, ...report.updated, ...report.orphaned]).toEqual([]);
+        expect(report.filesWritten).toBe(1);
+        const after = readTree(join(dir, 'src-gen'));
+        expect(after.get(REGION_COPY_NAME)).toContain('_post_status(\\"connected\\");'); // MAA's code, from its module.c
+        after.delete(REGION_COPY_NAME);
+        expect(after).toEqual(before);
+        const again = generateArchitecture((await loadWorkspace(dir)).documents, join(dir, 'src-gen'));
+        expect(again.errors).toEqual([]);
+        expect(again.filesWritten).toBe(0);
     }, 60_000);
 
     it("keeps the report's MAA and MSC user code when a port is added to MAA", async () => {
