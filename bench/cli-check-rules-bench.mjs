@@ -2,8 +2,9 @@
 // `contract check` of a supervisor with a long endof chain, as a user runs it (whole processes,
 // node packages/cli/bin/contract.js): a copy of examples/tutorial plus a supervisor CHN whose rules
 // R0: [elapsed=1ms], R1: [endof(R0)], ... each subscribe MAA:2 to one input port and end on an
-// MAA:2 event, so the subscribe-conflict check asks about every pair of them and the rules'
-// reasoning (packages/language/src/model/rule-activity.ts) tells them apart. Writes bench/parts/check-rules.json:
+// MAA:2 event: every pair of them is a question of the subscribe-conflict check, which the rules'
+// reasoning (packages/language/src/model/rule-activity.ts) answers "apart", and which its index of
+// each port's subscribes (model/first-overlapping.ts) passes over in a few steps. Writes bench/parts/check-rules.json:
 //   cli.check_rule_chain_300_s    median wall of `contract check`, 300 rules (5 runs)
 //   cli.check_rule_chain_1000_s   the same, 1,000 rules
 //   cli.check_rule_chain_1000_cpu_s  CPU (user + system) of those 1,000-rule runs, median: tells contention apart from cost

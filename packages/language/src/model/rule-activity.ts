@@ -166,6 +166,11 @@ export class RuleOverlap {
         return this.turns.neverTogether(a, b);
     }
 
+    /** What the pair questions read of `rule` (undefined for a rule of another function): for indexes over many rules (first-overlapping.ts). */
+    factsOf(rule: Rule): Readonly<RuleFacts> | undefined {
+        return this.info.get(rule);
+    }
+
     /** For two rules that may be active together but take turns: what lets them overlap (rule-turns.ts). */
     whyTurnsOverlap(a: Rule, b: Rule): string | undefined {
         if (a === b || !this.info.has(a) || !this.info.has(b)) return undefined;
@@ -173,7 +178,8 @@ export class RuleOverlap {
     }
 }
 
-interface RuleFacts {
+/** What `apart` reads of one rule: `a` and `b` are apart when one is `once` and ends before the other (endsBefore), or they share a `turn`. */
+export interface RuleFacts {
     once: boolean;
     /** The rule's interval in the walk of the ended-tree (rule-after-end.ts). */
     enter: number;

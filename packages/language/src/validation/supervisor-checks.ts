@@ -11,6 +11,7 @@ import {
 } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
 import { eventPortsOf, localsOf, rulesOf } from '../model/blocks.js';
+import { FirstOverlapping } from '../model/first-overlapping.js';
 import { RuleOverlap } from '../model/rule-activity.js';
 import { SupervisorCodes } from './codes/supervisors.js';
 import { report } from './report.js';
@@ -104,23 +105,30 @@ function producerKey(s: Subscribe): string | undefined {
 /**
  * Two subscribes of the supervisor to one input port, in rules that may be active at once (any two
  * but those the rules show never are: rule-activity.ts RuleOverlap); each subscribe is
- * reported once, against the first earlier one its rule may be active with.
+ * reported once, against the first earlier one its rule may be active with (found through an index
+ * of each port's subscribes, first-overlapping.ts: asking of every earlier one was quadratic).
  */
 function checkSubscribeConflicts(sup: Supervisor, accept: ValidationAcceptor): void {
-    const earlier = new Map<Port, Array<{ key: string; rule: Rule | undefined }>>();
     const overlaps = new Map<SupervisionFunction, RuleOverlap>(sup.functions.map((fn) => [fn, new RuleOverlap(fn)]));
     const overlap = (rule: Rule) => overlaps.get(rule.$container.$container);
+    interface Entry { s: Subscribe; target: Port; key: string; rule: Rule | undefined; position: number }
+    const entries: Entry[] = [];
+    const onPort = new Map<Port, Entry[]>();
     for (const s of subscribesOf(sup)) {
         const target = s.targetPort?.ref;
         const key = producerKey(s);
         if (!target || !key) continue;
-        const rule = AstUtils.getContainerOfType(s, isRule);
-        const before = earlier.get(target) ?? [];
-        const rules = rule && overlap(rule);
-        const first = before.find((b) => !(rule && b.rule && rules?.apart(rule, b.rule)));
-        before.push({ key, rule });
-        earlier.set(target, before);
-        if (!first) continue;
+        const before = onPort.get(target) ?? [];
+        const entry = { s, target, key, rule: AstUtils.getContainerOfType(s, isRule), position: before.length };
+        before.push(entry);
+        onPort.set(target, before);
+        entries.push(entry);
+    }
+    const indexes = new Map([...onPort].map(([port, list]) => [port, new FirstOverlapping(list.map((e) => e.rule), overlap)]));
+    for (const { s, target, key, rule, position } of entries) {
+        const at = indexes.get(target)!.firstBefore(position);
+        if (at === undefined) continue;
+        const first = onPort.get(target)![at]!;
         const turns = rule && first.rule ? overlap(rule)?.whyTurnsOverlap(rule, first.rule) : undefined;
         const when = turns ? ` They may be active at once: ${turns}.` : '';
         // the same producer twice is refused at run time too (`port :i already subscribed`): one subscription at a time
