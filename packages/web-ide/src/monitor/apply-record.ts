@@ -65,7 +65,7 @@ function moduleState(s: MonitorState, name: string, t: Ns): ModuleState | undefi
 function periodic(s: MonitorState, schema: string): PeriodicState | undefined {
   return entry(s, s.periodic, schema, () => ({
     releases: 0, lastCycle: -1, lastRelease: 0, completions: 0, lastResponseNs: 0, maxResponseNs: 0, sumResponseNs: 0,
-    histogram: new Array<number>(HIST_BUCKETS).fill(0), lateHistogram: new Array<number>(HIST_BUCKETS).fill(0), lateCycles: 0, maxLateNs: 0, deadlineMisses: 0, overruns: 0, overrunning: false, missedTicks: 0, recentMisses: [], recentOverruns: [],
+    histogram: new Array<number>(HIST_BUCKETS).fill(0), lateHistogram: new Array<number>(HIST_BUCKETS).fill(0), lateCycles: 0, maxLateNs: 0, deadlineMisses: 0, overruns: 0, overrunning: false, missedTicks: 0, lateReleases: 0, recentMisses: [], recentOverruns: [], recentLateReleases: [],
   }));
 }
 
@@ -437,6 +437,12 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
         p.overruns += skippedReleasesOf(f);
         p.overrunning = overrunningAfter(f) ?? p.overrunning;
         if (what === 'overrun') pushBounded(p.recentOverruns, { t, cycle: p.lastCycle }, RECENT_MARKS);
+      } else if (what === 'late_release') {
+        // a cycle ORD itself released past its CRITICAL_DELAY: its miss, told by its own line (no ORD:0)
+        const p = periodic(s, schema);
+        if (!p) return;
+        p.lateReleases++;
+        pushBounded(p.recentLateReleases, { t, cycle: num(f['cycle']) ?? -1 }, RECENT_MARKS);
       } else if (what === 'missed_tick' || what === 'missed_ticks_ended') {
         const p = periodic(s, schema);
         if (p) p.missedTicks += missedTicksOf(f);

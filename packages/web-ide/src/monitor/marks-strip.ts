@@ -17,9 +17,9 @@ import { fmtT } from './panel-text.js';
 
 /** Colours by index (0: no mark); a rule switched off is grey. */
 const PALETTE = ['', '#98c379', '#5c6370', '#61afef', '#e06c75', '#d19a66', '#c678dd', '#e5c07b', '#ff6ac1', '#56b6c2', '#ffffff'];
-const COLOR: Record<Mark['kind'], number> = { rule: 1, schema: 3, miss: 4, overrun: 5, function: 6, user: 7, error: 8, unheard: 8, kept: 9, waited: 9, crash: 10 };
+const COLOR: Record<Mark['kind'], number> = { rule: 1, schema: 3, miss: 4, late: 4, overrun: 5, function: 6, user: 7, error: 8, unheard: 8, kept: 9, waited: 9, crash: 10 };
 const RULE_OFF = 2;
-const ROW: Record<Mark['kind'], number> = { function: 0, user: 0, error: 0, unheard: 0, kept: 0, waited: 0, crash: 0, rule: 1, schema: 2, miss: 3, overrun: 3 };
+const ROW: Record<Mark['kind'], number> = { function: 0, user: 0, error: 0, unheard: 0, kept: 0, waited: 0, crash: 0, rule: 1, schema: 2, miss: 3, late: 3, overrun: 3 };
 const ROWS = 4;
 /** Marks a tooltip names (the rest counted), and how far from the pointer a mark is under it (px). */
 const TOOLTIP_MARKS = 6;
@@ -46,7 +46,7 @@ export class MarksStrip {
     this.canvas.className = 'monitor-strip';
     this.canvas.height = 44;
     this.canvas.setAttribute('role', 'img');
-    this.canvas.setAttribute('aria-label', 'Run timeline: function starts and stops (purple), the modules\' own records (yellow), errors and events no one received (pink), module crashes (white), requests kept for a full mailbox and their end (cyan), rule changes (green), schema activations (blue), deadline misses (red), overruns (orange); click to move the cursor');
+    this.canvas.setAttribute('aria-label', 'Run timeline: function starts and stops (purple), the modules\' own records (yellow), errors and events no one received (pink), module crashes (white), requests kept for a full mailbox and their end (cyan), rule changes (green), schema activations (blue), deadline misses and cycles ORD itself released past their CRITICAL_DELAY (red), overruns (orange); click to move the cursor');
     let dragging = false;
     const seek = (e: PointerEvent) => {
       const r = this.canvas.getBoundingClientRect();

@@ -8,7 +8,7 @@ import type { MonitorState, Ns } from './monitor-state.js';
 /** One thing the timeline marks at its time. */
 export interface Mark {
   t: Ns;
-  kind: 'rule' | 'schema' | 'miss' | 'overrun' | 'function' | 'user' | 'error' | 'kept' | 'crash' | 'unheard' | 'waited';
+  kind: 'rule' | 'schema' | 'miss' | 'late' | 'overrun' | 'function' | 'user' | 'error' | 'kept' | 'crash' | 'unheard' | 'waited';
   /** Where: the supervisor or schema (a crash, an event no one received: the module). */
   where: string;
   label: string;

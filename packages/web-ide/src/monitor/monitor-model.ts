@@ -910,6 +910,8 @@ function markOf({ t, r }: Timed, late: string): Mark | undefined {
   if (k.kind === 'scheduler' && (what === 'activate' || what === 'deactivate' || what === 'conflict' || ignoredUndo(k))) return { t, kind: 'schema', where: String(k.fields['schema'] ?? '?'), label: k.detail.slice(0, 120) };
   // an overrun's first skipped release, and, when the cycle skipped more, its count at its end: whatever ORD's line says
   // (the module its cycle still waits for, when it names one), within the bound of a line a log holds
+  // a cycle ORD itself released past its CRITICAL_DELAY (no ORD:0): ORD's line, as `contract trace` tells it
+  if (k.kind === 'scheduler' && what === 'late_release') return { t, kind: 'late', where: String(k.fields['schema'] ?? '?'), label: k.detail.slice(0, MAX_ORD_MARK_CHARS) };
   if (k.kind === 'scheduler' && (what === 'overrun' || what === 'overrun_ended')) return { t, kind: 'overrun', where: String(k.fields['schema'] ?? '?'), label: k.detail.slice(0, MAX_ORD_MARK_CHARS) };
   if (k.kind === 'supervisor' && (what === 'function_started' || what === 'function_stopped' || what === 'function_refused')) return { t, kind: 'function', where: k.module, label: k.detail.slice(0, 120) };
   return undefined;

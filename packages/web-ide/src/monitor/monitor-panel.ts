@@ -24,7 +24,7 @@ import { MarksStrip, markTooltip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { unheardEventText } from '@contract-studio/build-service/trace';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
-import { NOT_IN_MODEL, crashedModulesText, notReleasedText, schedulingText, flowDropText, flowValueText, flowWaitText, flowWaitTitle, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, ruleTexts, quietDataFlowRow, timeReadout, unheardEventsRow } from './panel-text.js';
+import { NOT_IN_MODEL, crashedModulesText, notReleasedText, schedulingText, flowDropText, flowValueText, flowWaitText, flowWaitTitle, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, lateReleasesText, ruleTexts, quietDataFlowRow, timeReadout, unheardEventsRow } from './panel-text.js';
 import { visibleText } from '@contract-studio/conventions';
 import { shortAtWord } from '../util/short-text.js';
 
@@ -60,7 +60,7 @@ const CLOCK_REDRAW_MS = 100;
 const CLOCK_TICK_MS = 250;
 
 /** What a periodic schema's block shows, to draw it again only when one of them moved (releases -1: not released yet). */
-interface DrawnCounts { releases: number; completions: number; misses?: number; overruns?: number; cd?: number; period?: number; live: boolean; empty: boolean }
+interface DrawnCounts { releases: number; completions: number; misses?: number; lateReleases?: number; overruns?: number; cd?: number; period?: number; live: boolean; empty: boolean }
 
 export class MonitorPanel {
   readonly element: HTMLElement;
@@ -497,22 +497,24 @@ export class MonitorPanel {
       const was = hist.counts;
       // (a run that ends, or has no records at all, says so in a block never released)
       const empty = m.recordCount === 0;
-      const urgent = !was || was.misses !== p?.deadlineMisses || was.overruns !== p?.overruns || was.cd !== cd || was.period !== period || was.live !== this.live || was.empty !== empty;
+      const urgent = !was || was.misses !== p?.deadlineMisses || was.lateReleases !== p?.lateReleases || was.overruns !== p?.overruns || was.cd !== cd || was.period !== period || was.live !== this.live || was.empty !== empty;
       const changed = urgent || (p ? was.releases !== p.releases || was.completions !== p.completions : was.releases !== -1);
       if (changed && this.due(`hist:${name}`, urgent ? URGENT_REDRAW_MS : COUNTS_REDRAW_MS)) {
-        hist.counts = { releases: p?.releases ?? -1, completions: p?.completions ?? -1, misses: p?.deadlineMisses, overruns: p?.overruns, cd, period, live: this.live, empty };
+        hist.counts = { releases: p?.releases ?? -1, completions: p?.completions ?? -1, misses: p?.deadlineMisses, lateReleases: p?.lateReleases, overruns: p?.overruns, cd, period, live: this.live, empty };
         setText(hist.title, `${name} · PERIOD ${def?.period ?? '?'} · CRITICAL_DELAY ${def?.criticalDelay ?? '?'}`);
         setText(hist.text, p
-          ? `${p.releases} module release(s) · last cycle ${p.lastCycle} · ${p.completions} cycle(s) complete · ${p.completions ? `response last ${fmtNs(p.lastResponseNs)}, mean ${fmtNs(p.sumResponseNs / p.completions)}, max ${fmtNs(p.maxResponseNs)}` : 'no response time yet'} · ${p.deadlineMisses} deadline miss(es) · ${p.overruns} overrun(s)${p.overrunning ? ' (its last cycle overran: ORD tells how many releases it skipped only when it ends)' : ''}${p.missedTicks ? ` · ${p.missedTicks} missed tick(s)` : ''}${releaseLatenessText(p)}`
+          ? `${p.releases} module release(s) · last cycle ${p.lastCycle} · ${p.completions} cycle(s) complete · ${p.completions ? `response last ${fmtNs(p.lastResponseNs)}, mean ${fmtNs(p.sumResponseNs / p.completions)}, max ${fmtNs(p.maxResponseNs)}` : 'no response time yet'} · ${p.deadlineMisses} deadline miss(es)${lateReleasesText(p.lateReleases)} · ${p.overruns} overrun(s)${p.overrunning ? ' (its last cycle overran: ORD tells how many releases it skipped only when it ends)' : ''}${p.missedTicks ? ` · ${p.missedTicks} missed tick(s)` : ''}${releaseLatenessText(p)}`
           : notReleasedText(this.live, empty));
         setAttr(hist.root, 'data-releases', String(p?.releases ?? 0));
         setAttr(hist.root, 'data-misses', String(p?.deadlineMisses ?? 0));
+        setAttr(hist.root, 'data-late-releases', String(p?.lateReleases ?? 0));
         setAttr(hist.root, 'data-overruns', String(p?.overruns ?? 0));
         drawHistogram(hist.canvas, p?.histogram ?? [], cd, period);
         // each miss's tooltip: its mark's label, which names what the cycle was still waiting for
         // the last few of each, said so when there were more (the timeline marks the others)
         const misses = (p?.recentMisses ?? []).slice(-5);
         const overruns = (p?.recentOverruns ?? []).slice(-3);
+        const lates = (p?.recentLateReleases ?? []).slice(-3);
         const lastOf = (shown: number, all: number, what: string) =>
           all > shown ? [h('span', { class: 'miss-more', title: 'The earlier ones are marked on the timeline ([ and ] step through the marks)' }, `the last ${shown} of ${all} ${what}:`)] : [];
         // each is a button: a click (or Enter) moves the cursor to it, as the strip's marks do
@@ -524,6 +526,11 @@ export class MonitorPanel {
         hist.misses.replaceChildren(...lastOf(misses.length, p?.deadlineMisses ?? 0, 'deadline misses'), ...misses.map((x) => chip('miss', x.t,
           m.marksBetween(x.t, x.t).find((k) => k.kind === 'miss' && k.where === name)?.label ?? `deadline miss (ORD:0) cycle ${x.cycle}`,
           `ORD:0 cycle ${x.cycle} at ${fmtT(x.t)}`, x.cycle)),
+          ...lastOf(lates.length, p?.lateReleases ?? 0, 'late releases'),
+          // each late release's tooltip: ORD's line, as `contract trace` tells it (no ORD:0: ORD itself was late)
+          ...lates.map((x) => chip('late-release', x.t,
+            m.marksBetween(x.t, x.t).find((k) => k.kind === 'late' && k.where === name)?.label ?? `late release: ${name} cycle ${x.cycle} (ORD late, no ORD:0)`,
+            `late release cycle ${x.cycle} at ${fmtT(x.t)}`, x.cycle)),
           ...lastOf(overruns.length, p?.overruns ?? 0, 'overruns'),
           // each overrun's tooltip: its mark's label, ORD's line as it says it (the module the cycle still waits for, when it names one)
           ...overruns.map((x) => chip('overrun', x.t,

@@ -129,9 +129,16 @@ export interface PeriodicState {
   /** The current cycle has skipped a release and has not ended: `overruns` counts 1 for it until it does. */
   overrunning: boolean;
   missedTicks: number;
-  /** The last misses and overruns (bounded), for the timeline marks. */
+  /**
+   * Cycles ORD itself released at or past their CRITICAL_DELAY (its `late release: ...` line): missed,
+   * but no ORD:0 and no ord_deadline_miss (so not in `deadlineMisses`), counted as `contract trace`
+   * counts them (`lateReleases`).
+   */
+  lateReleases: number;
+  /** The last misses, overruns and late releases (bounded), for the timeline marks. */
   recentMisses: MissMark[];
   recentOverruns: MissMark[];
+  recentLateReleases: MissMark[];
 }
 
 export interface ModuleState {

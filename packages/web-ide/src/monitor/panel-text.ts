@@ -210,3 +210,12 @@ export function notReleasedText(live: boolean, noRecords: boolean): string {
   if (live) return 'not released yet';
   return noRecords ? 'no release: the run has no records (it did not start: its label above says why)' : 'never released in this run';
 }
+
+/**
+ * The count of a periodic schema's cycles ORD itself released past their CRITICAL_DELAY, in the words
+ * of `contract trace`'s schema line (` · 2 cycles released past CRITICAL_DELAY (ORD itself late, no
+ * ORD:0)`); nothing when there were none.
+ */
+export function lateReleasesText(n: number): string {
+  return n ? ` · ${n} ${n === 1 ? 'cycle' : 'cycles'} released past CRITICAL_DELAY (ORD itself late, no ORD:0)` : '';
+}
