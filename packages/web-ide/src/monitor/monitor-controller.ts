@@ -48,6 +48,12 @@ const MAX_FILES = 256;
 /** A shown log folder whose files changed is read again this long after the last change (a run writing its logs changes them all the time). */
 const REREAD_MS = 1000;
 /**
+ * While the Monitor is shown in a tab the user sees, its list of the workspace's recent Build & Run
+ * jobs is read again this often (GET /api/recent-runs): a job another tab starts appears in it, still
+ * running, to be followed live. Also at once when the tab is shown again or gets the focus.
+ */
+export const RECENT_RUNS_MS = 3000;
+/**
  * The workspace log folder or trace file this tab's Monitor shows, kept for a reload (sessionStorage:
  * one per tab): `dir:FOLDER` or `file:PATH`. A job's run needs no such key: the run controller follows
  * its job again after a reload, and the Monitor with it.
@@ -86,6 +92,11 @@ export class MonitorController {
    * (`job:ID`): offered in the run list of every tab, read from the service when picked.
    */
   private recent = new Map<string, RecentEntry>();
+  /** What the run list last offered of `recent` (its ids and labels): the list is rebuilt only when it changed (an open list stays open). */
+  private recentSaid = '';
+  /** The next read of the recent jobs while the Monitor is shown (RECENT_RUNS_MS), and whether one is being read. */
+  private recentTimer: ReturnType<typeof setTimeout> | undefined;
+  private recentReading = false;
   /** Jobs of that list picked while they ran, followed live here: their CSV logs are read from their entry once they ended. */
   private readonly followedFromList = new Set<string>();
   private uses = 0;
@@ -126,6 +137,12 @@ export class MonitorController {
     deps.build.onFinished.on(() => {
       if (this.panel) void this.loadRecent();
     });
+    // and when the tab is seen again or focused, the Monitor shown (a job another tab started meanwhile)
+    const seen = () => {
+      if (this.isShown && document.visibilityState === 'visible') void this.loadRecent(true);
+    };
+    document.addEventListener('visibilitychange', seen);
+    window.addEventListener('focus', seen);
     // the language server built the model, or built it again after an edit: the panel reads its
     // schemas and the rules' places again (a panel made before the server was ready, by a Build &
     // Run pressed at once, showed "PERIOD ?" and no CRITICAL_DELAY line for the whole run)
@@ -276,6 +293,7 @@ export class MonitorController {
     this.deps.editors.dock(panel.element);
     this.deps.button.setAttribute('aria-pressed', 'true');
     await this.loadRecent();
+    this.watchRecent();
     const pick = id ?? this.shown ?? [...this.runs.keys()].pop();
     if (pick) await this.select(pick);
   }
@@ -587,14 +605,38 @@ export class MonitorController {
    * and offered in the run list; a job the build service no longer keeps leaves it. A failed
    * request keeps the list as it was.
    */
-  private async loadRecent(): Promise<void> {
+  private async loadRecent(onlyWhenChanged = false): Promise<void> {
+    if (onlyWhenChanged && this.recentReading) return;
+    this.recentReading = true;
     try {
       const now = Date.now();
       this.recent = new Map(recentRunsOf(await api.recentRuns()).map((r) => [`job:${r.id}`, recentEntry(r, now)]));
     } catch {
       /* no build service, or the server away a moment: the list stays as it was */
+    } finally {
+      this.recentReading = false;
     }
+    const said = [...this.recent.values()].map((e) => `${e.id} ${e.label}`).join('\n');
+    if (onlyWhenChanged && said === this.recentSaid) return;
+    this.recentSaid = said;
     await this.refreshSources();
+  }
+
+  /**
+   * Reads the recent jobs again every RECENT_RUNS_MS while the Monitor is shown (a hidden tab's
+   * reads are skipped until it is seen again); stops once it is no longer shown (show() starts it again).
+   */
+  private watchRecent(): void {
+    if (this.recentTimer !== undefined) return;
+    const tick = async () => {
+      if (!this.isShown) {
+        this.recentTimer = undefined;
+        return;
+      }
+      if (document.visibilityState === 'visible') await this.loadRecent(true);
+      this.recentTimer = setTimeout(() => void tick(), RECENT_RUNS_MS);
+    };
+    this.recentTimer = setTimeout(() => void tick(), RECENT_RUNS_MS);
   }
 
   /**
