@@ -22,6 +22,12 @@ export interface Activation {
    * `records`: how many the handler wrote; `last`: the kind of the last.
    */
   event?: { from: string; records: number; last?: string; ended: boolean };
+  /**
+   * Set when the module's log has no end of this bar and the launcher's own line says the module
+   * ended then (gone-activations.ts): `end` is that line's time, this its words
+   * (`contract-launch: module SRT (pid 41) died by signal 9 (Killed)`).
+   */
+  gone?: string;
 }
 
 /**

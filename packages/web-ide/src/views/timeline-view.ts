@@ -3,6 +3,7 @@ import { api } from '../api.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { inferPeriodOf, type Activation } from './activation-log.js';
 import { laneBars, lanesOf, lastTime, type LaneBar } from './timeline-bars.js';
+import { endGoneActivations, goneFromLauncherLines, type GoneAt } from './gone-activations.js';
 import { activationsFromLogs, localLogFolders, readTraceFile, readWorkspaceLogs, type LogFile, type RunLogs } from './run-logs.js';
 
 const SVG = 'http://www.w3.org/2000/svg';
@@ -32,7 +33,7 @@ export class TimelineView {
   private readonly info: HTMLElement;
   private readonly zoom: HTMLInputElement;
   private readonly source: HTMLSelectElement;
-  private last: { acts: Activation[]; files: number; errors: string[] } | undefined;
+  private last: { acts: Activation[]; files: number; errors: string[]; gone?: readonly GoneAt[] } | undefined;
   private run: RunLogs | undefined;
   /** Redraws the bars of the part of the timeline on screen (after a scroll). */
   private drawBars: (() => void) | undefined;
@@ -47,7 +48,7 @@ export class TimelineView {
   ) {
     this.info = h('span', { class: 'muted' });
     this.zoom = h('input', { type: 'range', min: 0, max: 8, step: 1, value: 0, class: 'zoom', title: 'Zoom (×2 per step)', 'aria-label': 'Zoom (×2 per step)' });
-    this.zoom.addEventListener('input', () => this.last && this.draw(this.last.acts, this.last.files, this.last.errors));
+    this.zoom.addEventListener('input', () => this.last && this.draw(this.last.acts, this.last.files, this.last.errors, this.last.gone));
     this.canvas = h('div', {
       class: 'timeline-canvas', tabindex: 0, role: 'group', 'data-autofocus': true,
       'aria-label': 'Timeline of module activations: arrows scroll, Home and End go to the start and the end of the run; hover a bar for its times',
@@ -75,7 +76,7 @@ export class TimelineView {
       this.redrawPending = true;
       requestAnimationFrame(() => {
         this.redrawPending = false;
-        if (this.last) this.draw(this.last.acts, this.last.files, this.last.errors);
+        if (this.last) this.draw(this.last.acts, this.last.files, this.last.errors, this.last.gone);
       });
     }).observe(this.canvas);
     this.renderSources('local');
@@ -116,8 +117,9 @@ export class TimelineView {
     const traces = this.workspace.allFiles().filter((f) => f.endsWith('.jsonl') && f.startsWith(pre)).sort().slice(0, MAX_TRACE_FILES);
     this.renderSources(this.source.value || 'local', held.map((f) => f.folder), traces);
     if (this.source.value.startsWith('file:')) {
-      const { files, problems } = await readTraceFile(this.source.value.slice(5), (f) => f);
-      return this.drawLogs(files, problems, `${this.source.value.slice(5)} holds no record.`);
+      // its launcher_line items (`contract run --trace`): a module killed from outside ended at the line's time, as in a folder's replay
+      const { files, problems, launcherLines } = await readTraceFile(this.source.value.slice(5), (f) => f);
+      return this.drawLogs(files, problems, `${this.source.value.slice(5)} holds no record.`, launcherLines);
     }
     const csvs = (held.find((f) => `local:${f.folder}` === this.source.value) ?? held[0])?.csvs ?? [];
     if (!csvs.length) {
@@ -137,10 +139,12 @@ export class TimelineView {
     const notRead = [...listing.notRead];
     if (listing.notReadCount > listing.notRead.length) notRead.push(`${listing.notReadCount - listing.notRead.length} more entries that are no regular file`);
     if (listing.more) notRead.push(`${listing.more} more CSV log(s) past the first ${listing.max}`);
-    this.drawLogs(files, [...problems, ...notRead], '');
+    // the folder's contract-launch.log (its end lines, each with its time on the records' clock)
+    this.drawLogs(files, [...problems, ...notRead], '', 'launcherLines' in listing ? listing.launcherLines : undefined);
   }
 
-  private drawLogs(files: LogFile[], problems: string[], emptyText: string): void {
+  /** `launcherLines`: the launcher's end lines of a logs folder or trace file (gone-activations.ts). */
+  private drawLogs(files: LogFile[], problems: string[], emptyText: string, launcherLines?: readonly { monoNs: string; line: string }[]): void {
     if (!files.length && emptyText) {
       this.info.textContent = '';
       this.last = undefined;
@@ -148,11 +152,14 @@ export class TimelineView {
       return;
     }
     const { acts, errors } = activationsFromLogs(files);
-    this.draw(acts, files.length + problems.length, [...problems, ...errors]);
+    const gone = goneFromLauncherLines(files, launcherLines);
+    endGoneActivations(acts, gone);
+    this.draw(acts, files.length + problems.length, [...problems, ...errors], gone);
   }
 
-  private draw(acts: Activation[], files: number, errors: string[]): void {
-    this.last = { acts, files, errors };
+  /** `gone`: the modules the launcher's end lines say ended, marked in their lanes at that time (gone-activations.ts). */
+  private draw(acts: Activation[], files: number, errors: string[], gone: readonly GoneAt[] = []): void {
+    this.last = { acts, files, errors, gone };
     this.drawBars = undefined;
     if (!acts.length) {
       this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No activations in ${files} log file(s). ${errors.join(' ')}`));
@@ -213,6 +220,15 @@ export class TimelineView {
     });
     const bars = svg('g', { class: 'act-bars' });
     root.append(bars);
+    // a module the launcher's own line says ended (killed from outside, crashed): a mark in its lane at the line's time
+    const drawnGone = gone.filter((g) => modules.includes(g.module));
+    for (const g of drawnGone) {
+      const i = modules.indexOf(g.module);
+      const px = x(Math.min(Math.max(g.at, t0), t0 + span));
+      const mark = svg('line', { x1: px, x2: px, y1: i * lane + 2, y2: (i + 1) * lane - 2, class: 'gone-mark', 'data-module': g.module });
+      mark.append(svg('title', {}, `${g.module} gone at ${((g.at - t0) / 1e6).toFixed(3)} ms: ${g.words}`));
+      root.append(mark);
+    }
     const drawBars = () => {
       // only what is on screen, and a screen's width either side of it (pixels of the svg): the
       // period lines and the bars
@@ -222,7 +238,7 @@ export class TimelineView {
       const made: SVGElement[] = [];
       lanes.forEach((laneActs, i) => {
         for (const b of laneBars(laneActs, x, invX, tEnd, from, to)) {
-          const bar = svg('rect', { x: b.x1, y: i * lane + 5, width: b.x2 - b.x1, height: lane - 10, rx: 2, class: `act-bar${b.open ? ' open' : ''}${b.count > 1 ? ' many' : ''}${b.first.event && b.last.event ? ' event' : ''}` });
+          const bar = svg('rect', { x: b.x1, y: i * lane + 5, width: b.x2 - b.x1, height: lane - 10, rx: 2, class: `act-bar${b.open ? ' open' : ''}${b.last.gone ? ' gone' : ''}${b.count > 1 ? ' many' : ''}${b.first.event && b.last.event ? ' event' : ''}` });
           bar.append(svg('title', {}, barTitle(b, t0)));
           made.push(bar);
         }
@@ -233,7 +249,7 @@ export class TimelineView {
     root.append(axis);
     const leftOut = leftOutModules ? ` · ${leftOutModules} more modules named in the logs, past the ${MAX_LANES} lanes shown (${leftOutActs} activations left out: did a module's code write into its log?)` : '';
     const events = acts.reduce((n, a) => n + (a.event ? 1 : 0), 0);
-    this.info.textContent = `${acts.length - events} activations · ${modules.length} modules${events ? ` · ${events} events handled` : ''}${leftOut} · ${(span / 1e6).toFixed(1)} ms${periodOf ? ` · period ≈ ${(periodOf.ns / 1e6).toFixed(2)} ms (of ${periodOf.module}: the grid's #k)` : ''}${errors.length ? ` · left out or not whole: ${errors.slice(0, 8).join('; ')}${errors.length > 8 ? `; ${errors.length - 8} more` : ''}` : ''}`;
+    this.info.textContent = `${acts.length - events} activations · ${modules.length} modules${events ? ` · ${events} events handled` : ''}${leftOut}${drawnGone.length ? ` · gone: ${drawnGone.map((g) => `${g.module} at ${((g.at - t0) / 1e6).toFixed(3)} ms (${g.words})`).join(', ')}` : ''} · ${(span / 1e6).toFixed(1)} ms${periodOf ? ` · period ≈ ${(periodOf.ns / 1e6).toFixed(2)} ms (of ${periodOf.module}: the grid's #k)` : ''}${errors.length ? ` · left out or not whole: ${errors.slice(0, 8).join('; ')}${errors.length > 8 ? `; ${errors.length - 8} more` : ''}` : ''}`;
     this.canvas.replaceChildren(root);
     // drawn once the svg is in place: a zoom keeps the scroll position, clamped to the new width
     drawBars();
@@ -245,7 +261,7 @@ function barTitle(b: LaneBar, t0: number): string {
   const ms = (t: number) => `${((t - t0) / 1e6).toFixed(3)} ms`;
   const a = b.first;
   if (b.count === 1 && a.event) return `${a.module} handled an event from ${a.event.from} at ${ms(a.start)}: ${handlerEnd(a)}`;
-  if (b.count === 1) return `${a.module} ${ms(a.start)} → ${a.end !== undefined ? `${((a.end - a.start) / 1e6).toFixed(3)} ms` : 'running'} ${a.detail}`;
+  if (b.count === 1) return `${a.module} ${ms(a.start)} → ${a.end !== undefined ? `${((a.end - a.start) / 1e6).toFixed(3)} ms` : 'running'} ${a.detail}${a.gone ? ` · gone at ${ms(a.end!)}: ${a.gone}` : ''}`;
   const end = b.last.end;
   const what = b.first.event && b.last.event ? 'events handled' : 'activations';
   return `${a.module}: ${b.count} ${what} from ${ms(a.start)} to ${end !== undefined ? ms(end) : `${ms(b.last.start)} (running)`} (zoom in to see each)`;
