@@ -50,6 +50,11 @@ typedef struct SimModule {
     long activations;   /* releases started: the `activation=N` of its run records            */
     int64_t run_ns;     /* asynchronous: each run ends this long after its start, -1: never   */
     int64_t run_once;   /* -1: none; else the next run only                                   */
+    /* asynchronous: the events of connected event flows its handler has taken or will take (one
+       at a time, as its request loop does), and when the last one's handling ends; exec_ns /
+       exec_once are the time of each handling (a release's time for a synchronous module) */
+    int handling;
+    int64_t busy_until;
 } SimModule;
 
 typedef struct SimFinish {
@@ -59,7 +64,20 @@ typedef struct SimFinish {
     uint32_t release_id;
     long activation;     /* the module's activation this release is                            */
     int own_end;         /* an asynchronous run its own code ends (finish M after T), not a release */
+    int event;           /* an event of a connected flow: 1 its handler takes it (event_received),
+                            2 its handler has ended (event_handled); 0: none of these           */
+    char from[64];       /* the event's producer, its out port, the module's in port             */
+    int from_port, port;
+    int64_t taken;       /* event 2: when the handler took it                                    */
 } SimFinish;
+
+/* An event flow an event schema connected (`A:o =* B:i`, `=>` one shot): B's handler takes what A
+   emits on o, as libmodule's PostEvent delivers it to B's mailbox (mailbox.c). */
+typedef struct SimEventFlow {
+    char src[64], dst[64];
+    int src_port, dst_port;
+    int oneshot;
+} SimEventFlow;
 
 /* A data flow ORD connected (`A:o -> B:i * k`): B receives what A posts on every k-th activation
    of A since the connection, as libmodule's PostData counts (dataflow.c). */
@@ -101,6 +119,8 @@ struct SimWorld {
     int nfin, capfin;
     SimFlow *flows;
     int nflows, capflows;
+    SimEventFlow *evflows;
+    int nevflows, capevflows;
     uint64_t seq;
     SimMsg *head, *tail;
     uint64_t finished;
@@ -282,7 +302,7 @@ static void sio_start_module(void *ctx, const char *module, int priority) {
     int64_t run = m->run_once >= 0 ? m->run_once : m->run_ns;
     m->run_once = -1;
     if (run >= 0 && grow((void **)&p->w->fin, &p->w->capfin, p->w->nfin + 1, sizeof *p->w->fin) == 0)
-        p->w->fin[p->w->nfin++] = (SimFinish){p->w->now + run, p->w->seq++, i, 0, m->activations, 1};
+        p->w->fin[p->w->nfin++] = (SimFinish){.at = p->w->now + run, .seq = p->w->seq++, .module = i, .release_id = 0, .activation = m->activations, .own_end = 1};
 }
 /* `stop module M` (the undo of its start: steps-to-trace.ts adds `undo: `), then what its hold decided */
 static void sio_stop_module(void *ctx, const char *module) {
@@ -336,6 +356,27 @@ static void sio_connect(void *ctx, const ContractEventFlow *f) {
     engine_flow_hold_name(name, sizeof name, f->src_module, f->src_port, f->dst_module, f->dst_port);
     action(p->w, p->v->name, "connect %s", flow);
     if (hold_take(p, name) == 0) record(p->w, p->v->name, "flow_hold", name, -1, "hold taken");
+    SimWorld *w = p->w;
+    for (int i = 0; i < w->nevflows; i++) /* one subscription, whichever supervisors ask for it */
+        if (w->evflows[i].src_port == f->src_port && w->evflows[i].dst_port == f->dst_port &&
+            strcmp(w->evflows[i].src, f->src_module) == 0 && strcmp(w->evflows[i].dst, f->dst_module) == 0)
+            return;
+    if (grow((void **)&w->evflows, &w->capevflows, w->nevflows + 1, sizeof *w->evflows) != 0) return;
+    SimEventFlow *e = &w->evflows[w->nevflows++];
+    scopy(e->src, sizeof e->src, f->src_module);
+    scopy(e->dst, sizeof e->dst, f->dst_module);
+    e->src_port = f->src_port;
+    e->dst_port = f->dst_port;
+    e->oneshot = f->mode == CONTRACT_ONESHOT;
+}
+/* the flow's subscription ends with its last hold */
+static void drop_event_flow(SimWorld *w, const ContractEventFlow *f) {
+    for (int i = 0; i < w->nevflows; i++)
+        if (w->evflows[i].src_port == f->src_port && w->evflows[i].dst_port == f->dst_port &&
+            strcmp(w->evflows[i].src, f->src_module) == 0 && strcmp(w->evflows[i].dst, f->dst_module) == 0) {
+            w->evflows[i] = w->evflows[--w->nevflows];
+            return;
+        }
 }
 static void sio_disconnect(void *ctx, const ContractEventFlow *f) {
     SimSup *p = ctx;
@@ -347,8 +388,10 @@ static void sio_disconnect(void *ctx, const ContractEventFlow *f) {
     if (others > 0)
         record(p->w, p->v->name, "flow_hold", name, -1,
                "hold dropped (kept connected: used by %d other supervisor(s))", others);
-    else
+    else {
         record(p->w, p->v->name, "flow_hold", name, -1, "last hold dropped (disconnected)");
+        drop_event_flow(p->w, f);
+    }
 }
 static void sio_subscribe(void *ctx, const char *module, int src_port, int in_port,
                           ContractEventMode mode, uint32_t id) {
@@ -488,7 +531,7 @@ static void oio_release(void *ctx, const char *module, const char *schema, int64
     int64_t exec = m->exec_once >= 0 ? m->exec_once : m->exec_ns >= 0 ? m->exec_ns : m->wcet_ns;
     m->exec_once = -1;
     if (grow((void **)&w->fin, &w->capfin, w->nfin + 1, sizeof *w->fin)) return;
-    w->fin[w->nfin++] = (SimFinish){w->now + exec, w->seq++, i, release_id, ++m->activations, 0};
+    w->fin[w->nfin++] = (SimFinish){.at = w->now + exec, .seq = w->seq++, .module = i, .release_id = release_id, .activation = ++m->activations, .own_end = 0};
     m->outstanding++;
     record(w, m->name, "run_started", "ORD", -1, "activation=%ld", m->activations);
 }
@@ -516,8 +559,47 @@ static void oio_fact(void *ctx, int64_t t, const OrdFact *f) {
 
 /* ---- delivery ----------------------------------------------------------------------------- */
 
-/** Delivers an event of `src`:`port` to every supervisor subscribed to it; returns how many. */
+/** A handling of an event by module i's handler, at `at`: 1 it takes it, 2 it has ended. */
+static void schedule_handling(SimWorld *w, int i, int what, int64_t at, int64_t taken,
+                              const char *src, int src_port, int port) {
+    if (grow((void **)&w->fin, &w->capfin, w->nfin + 1, sizeof *w->fin) != 0) return;
+    SimFinish *f = &w->fin[w->nfin++];
+    *f = (SimFinish){.at = at, .seq = w->seq++, .module = i, .release_id = 0, .activation = 0, .own_end = 0};
+    f->event = what;
+    f->taken = taken;
+    f->from_port = src_port;
+    f->port = port;
+    scopy(f->from, sizeof f->from, src);
+}
+
+/** The asynchronous module `dst`'s handler gets an event of `src`:`src_port` on its in port
+ *  `port`, as libmodule's request loop does: it takes it (GetEventId: event_received) when its
+ *  handler of the previous one has ended, and its handler ends `exec` later (the module reads its
+ *  mailbox again: event_handled). A crashed module takes nothing. */
+static void module_event(SimWorld *w, const char *dst, const char *src, int src_port, int port) {
+    int i = module_index(w, dst, 1);
+    if (i < 0 || w->mods[i].crashed) return;
+    SimModule *m = &w->mods[i];
+    int64_t took = m->exec_once >= 0 ? m->exec_once : m->exec_ns >= 0 ? m->exec_ns : 0;
+    m->exec_once = -1;
+    int64_t start = m->handling > 0 && m->busy_until > w->now ? m->busy_until : w->now;
+    if (m->handling > 0) schedule_handling(w, i, 1, start, start, src, src_port, port);
+    else record(w, m->name, "event_received", src, port, "from_port=%d latency_ns=0", src_port);
+    m->handling++;
+    m->busy_until = start + took;
+    schedule_handling(w, i, 2, m->busy_until, start, src, src_port, port);
+}
+
+/** Delivers an event of `src`:`port` to every supervisor subscribed to it, and to the
+ *  asynchronous modules an event flow connects to it; returns how many supervisors. */
 static int deliver_event(SimWorld *w, const char *src, int port, const void *data, size_t size) {
+    for (int k = 0; k < w->nevflows;) {
+        SimEventFlow e = w->evflows[k];
+        if (e.src_port != port || strcmp(e.src, src) != 0) { k++; continue; }
+        if (e.oneshot) w->evflows[k] = w->evflows[--w->nevflows]; /* spent by this event */
+        else k++;
+        module_event(w, e.dst, src, port, e.dst_port);
+    }
     int n = 0;
     for (int s = 0; s < w->nsups; s++) {
         SimSup *p = &w->sups[s];
@@ -676,6 +758,7 @@ void sim_world_destroy(SimWorld *w) {
     free(w->mods);
     free(w->fin);
     free(w->flows);
+    free(w->evflows);
     free(w);
 }
 
@@ -713,6 +796,16 @@ static int finish_one(SimWorld *w, int64_t t) {
     SimModule *m = &w->mods[f.module];
     if (f.own_end) { /* that run, if it still goes on (not stopped, not started again since) */
         if (m->started && !m->crashed && m->activations == f.activation) end_own_run(w, m);
+        return 1;
+    }
+    if (f.event == 1) { /* its handler takes the next event (GetEventId) */
+        record(w, m->name, "event_received", f.from, f.port, "from_port=%d latency_ns=0", f.from_port);
+        return 1;
+    }
+    if (f.event == 2) { /* its handler has ended: the module reads its mailbox again */
+        if (m->handling > 0) m->handling--;
+        record(w, m->name, "event_handled", f.from, f.port, "from_port=%d handling_ns=%lld", f.from_port,
+               (long long)(w->now - f.taken));
         return 1;
     }
     if (m->outstanding > 0) m->outstanding--;
@@ -836,7 +929,8 @@ int sim_world_crash(SimWorld *w, const char *module, char *err, size_t errlen) {
     }
     w->mods[i].crashed = 1;
     w->mods[i].started = 0;
-    for (int k = 0; k < w->nfin;) /* its releases never finish */
+    w->mods[i].handling = 0;
+    for (int k = 0; k < w->nfin;) /* its releases and its handler never finish */
         if (w->fin[k].module == i) w->fin[k] = w->fin[--w->nfin];
         else k++;
     action(w, module, "crashed");

@@ -188,7 +188,7 @@ describe('contract-language-server: .scenario files', () => {
         expect(await labels(16)).toEqual(['misses']);
         expect(await labels(17)).toEqual(['schemaCommande1', 'schemaCommande2']);
         expect(await labels(8)).toEqual(expect.arrayContaining(['"schemaCommande1"']));
-        expect(await labels(9)).toEqual(['MSA', 'MSB', 'MSC', 'MSD']);
+        expect(await labels(9)).toEqual(['MAA', 'MAB', 'MSA', 'MSB', 'MSC', 'MSD']);
         expect(await labels(13)).toEqual(['MAA', 'MAB']); // finish: the asynchronous modules only
         expect(await labels(14)).toEqual(['after']); // finish MAB after TIME: each of its runs
         // Value templates: the type's default, one element per field.

@@ -14,7 +14,7 @@ describe('checkScenario on the tutorial', () => {
             'expect rule SUP.action.FIFTH active',             // 5
             'expect local temp_consigne == {1.0, 2.0}',        // 6: TypeA has 3 fields
             'expect local nothing == 1',                       // 7
-            'exec MAA 2ms',                                    // 8: asynchronous
+            'exec MAA 2ms',                                    // 8: fine (each event MAA handles)
             't=3ms ORD:0 "noSchema"',                          // 9
             'expect schema schemaCommande1 active',            // 10: fine
             'expect module ZZZ running',                       // 11
@@ -36,7 +36,6 @@ describe('checkScenario on the tutorial', () => {
             "5:24 scenario-unknown-rule SUP.action has no rule 'FIFTH' (rules: FIRST, SECOND, THIRD, FOURTH, RECEPTION)",
             "6:31 scenario-value-type TypeA has 3 fields (i, j, k); this value has 2 elements for local 'temp_consigne'.",
             "7:14 scenario-unknown-local no function of the project has a local 'nothing'",
-            '8:6 scenario-not-synchronous MAA is an asynchronous module: only synchronous modules are released by ORD (exec sets the time of a release)',
             "9:13 scenario-unknown-schema no schema 'noSchema' in the project (schemas: schemaReceptionMessage, schemaCommande1, schemaCommande2)",
             "11:15 scenario-unknown-module no module 'ZZZ' in the project (modules: MAA, MAB, MSA, MSB, MSC, MSD)",
             '12:8 scenario-not-asynchronous MSA is a synchronous module: each of its releases ends by itself (exec sets how long one takes); finish ends the run of an asynchronous module',

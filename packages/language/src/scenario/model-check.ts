@@ -165,11 +165,10 @@ export function checkScenario(steps: Step[], index: ModelIndex): ScenarioCheck {
                 if (m && m.kind !== 'asynchronous') error(step.module.span, 'scenario-not-asynchronous', `${m.name} is a synchronous module: each of its releases ends by itself (exec sets how long one takes); finish ends the run of an asynchronous module`);
                 return;
             }
-            case 'exec': {
-                const m = module(step.module);
-                if (m && m.kind !== 'synchronous') error(step.module.span, 'scenario-not-synchronous', `${m.name} is an asynchronous module: only synchronous modules are released by ORD (exec sets the time of a release)`);
+            case 'exec':
+                // a synchronous module's releases, an asynchronous one's handling of each event of a connected event flow
+                module(step.module);
                 return;
-            }
             case 'event': {
                 const src = step.module.text;
                 if (src === 'ORD') {

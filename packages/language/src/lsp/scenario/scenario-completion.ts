@@ -25,7 +25,7 @@ const DIRECTIVES: Array<{ label: string; detail: string; header?: boolean }> = [
     { label: 'expect', detail: 'expect rule|schema|function|module|local|deadline misses|overruns ...: checked at this time' },
     { label: 'crash', detail: 'crash MODULE: it stops and never acknowledges a release again' },
     { label: 'finish', detail: 'finish MODULE [after TIME [once]]: the asynchronous module\'s own code ends its run (now, or each run that long after its start)' },
-    { label: 'exec', detail: 'exec MODULE TIME [once]: execution time of each release of a synchronous module' },
+    { label: 'exec', detail: 'exec MODULE TIME [once]: execution time of each release of a synchronous module, of each event an asynchronous module handles' },
     { label: 'scenario', detail: 'scenario TITLE: the scenario\'s title (header line)', header: true },
     { label: 'until', detail: 'until TIME: the virtual end of the scenario (header line)', header: true },
 ];
@@ -162,9 +162,9 @@ export function completeUnguarded(text: string, position: Position, names: Scena
         f?.parameters.forEach((p) => add(p.name, CompletionItemKind.Variable, `${typeName(typeOf(p.type))} ${p.name}`, `${p.name} = `));
         return items;
     }
-    // crash / finish / exec MODULE (finish: asynchronous modules, exec: synchronous ones)
+    // crash / finish / exec MODULE (finish: asynchronous modules; exec: a synchronous one's releases, an asynchronous one's event handling)
     if ((m = /^\s*(crash|finish|exec)\s+[A-Za-z0-9_]*$/.exec(rest))) {
-        const kind = m[1] === 'exec' ? 'synchronous' : m[1] === 'finish' ? 'asynchronous' : undefined;
+        const kind = m[1] === 'finish' ? 'asynchronous' : undefined;
         names.modules.forEach((mod, n) => {
             if (!kind || mod.kind === kind) add(n, CompletionItemKind.Class, `${mod.kind} module`);
         });
