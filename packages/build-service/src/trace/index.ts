@@ -15,6 +15,8 @@ export { confirmingHold, flowHoldName, type ConfirmingHold } from './action-hold
 export { launcherEndLine, endedOnItsOwn, type LauncherEnd } from './launcher-end-line.js';
 export { LAUNCHER_LINES_FILE, MAX_LAUNCHER_LINES_BYTES, MAX_LAUNCHER_LINES, launcherLinesOfFile, LauncherLinesQueue, type LauncherFileLine } from './launcher-lines-file.js';
 export { LAUNCHER_LINE_KIND, launcherLineJson, launcherLineOfJson, isLauncherLine, type LauncherLineJson, type LauncherLineItem } from './launcher-line-record.js';
+export type { EventHandlingFigures } from './event-handling.js';
+export { DurationQuantiles } from './duration-quantiles.js';
 export { renderStory, StoryTeller, CUT_RECORD, crashText, unheardEventText, type SchemaFigures, type NamedSchemaFigures, dataDropReason, userRecordText, keptRequestsText, askedToStopText, holdText, ownRunEndText, readableCause, missWaitText, missCriticalDelayNs, earlyFinish, sinceTickText, type EarlyAck, type EarlyFinish, priorityText, LATE_RELEASE_SHARE, stuckSaysGone, ignoredUndo, LATE_RELEASE_NS, STORY_FOLLOWED } from './story.js';
 export { DataFlowUse, SILENT_FLOW_MIN_NS, SPARSE_FLOW_RATIO } from './data-flow-use.js';
 export { SupervisorFlowUse } from './supervisor-flow-use.js';

@@ -15,6 +15,7 @@ import { ReleaseLateness } from './release-lateness.js';
 import { UndosToOrd } from './undos-to-ord.js';
 import { DataFlowUse } from './data-flow-use.js';
 import { EventWaits } from './event-waits.js';
+import { EventHandling, type EventHandlingFigures } from './event-handling.js';
 import { LostEvents, lostFlowText } from './lost-events.js';
 import { UnmatchedEvents } from './unmatched-events.js';
 import { ProducerChanges } from './producer-changes.js';
@@ -446,6 +447,8 @@ export class StoryTeller {
     private readonly dataFlows = new DataFlowUse();
     /** Event flows whose posts waited for room in their subscriber's full mailbox (flowLines). */
     private readonly eventWaits = new EventWaits();
+    /** Each asynchronous module's handling of its events (`event_handled`: handlingLines). */
+    private readonly eventHandling = new EventHandling();
     /** Events whose posts failed during the run: lost (lost-events.ts; flowLines, the line of counts). */
     private readonly lostEvents = new LostEvents();
     /** A supervisor's module events that changed no rule (unmatched-events.ts). */
@@ -494,6 +497,7 @@ export class StoryTeller {
         this.endedMidRun.see(k);
         this.dataFlows.see(k);
         this.lostEvents.see({ module: k.module, kind: k.kind, peer: k.peer, port: k.port ?? undefined, detail: k.detail });
+        this.eventHandling.see(k);
         const waited = this.eventWaits.see(k);
         if (waited) return `${at(k)} ${waited}`;
         const unmatched = this.unmatched.see(k);
@@ -877,6 +881,20 @@ export class StoryTeller {
         return [...this.lostEvents.lostFlows().map(lostFlowText), ...this.eventWaits.lines(), ...this.unmatched.lines(), ...this.producerChanges.lines(), ...this.dataFlows.lines()];
     }
 
+    /**
+     * One line per asynchronous module that handled events (its `event_handled` records), in name
+     * order, told after the flows' lines: the events handled, the handling time's p99 and max, the
+     * longest with its event and when it was received (event-handling.ts).
+     */
+    handlingLines(): string[] {
+        return this.eventHandling.lines((ns) => offset(ns - (this.t0 ?? ns)));
+    }
+
+    /** The same as data, in module order (`contract run --format json`'s `eventHandling`). */
+    eventHandlingFigures(): EventHandlingFigures[] {
+        return this.eventHandling.figures();
+    }
+
     /** The same figures as data, in name order (`contract run` and `contract simulate --format json`). */
     schemaFigures(): NamedSchemaFigures[] {
         return [...this.schemas].sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0)).map(([schema, f]) => ({ schema, ...f }));
@@ -915,7 +933,7 @@ export class StoryTeller {
     }
 }
 
-/** One line per told record, `+S.mmmmmm MODULE what`, then the flows' lines, then one line per periodic schema, then a summary line of counts. */
+/** One line per told record, `+S.mmmmmm MODULE what`, then the flows' lines, then one line per asynchronous module that handled events, then one line per periodic schema, then a summary line of counts. */
 export function renderStory(records: TraceRecord[]): string[] {
     const teller = new StoryTeller();
     const lines: string[] = [];
@@ -923,6 +941,6 @@ export function renderStory(records: TraceRecord[]): string[] {
         const line = teller.tell(r);
         if (line !== undefined) lines.push(line);
     }
-    lines.push(...teller.endLines(), ...teller.flowLines(), ...teller.schemaLines(), teller.summary());
+    lines.push(...teller.endLines(), ...teller.flowLines(), ...teller.handlingLines(), ...teller.schemaLines(), teller.summary());
     return lines;
 }

@@ -1,22 +1,33 @@
 /**
- * Each periodic schema's figures over a run — completed cycles, longest response, deadline misses,
- * overruns (every skipped release), held cycles, ORD's missed ticks — from the CSV logs `contract
- * run` saved, read as a stream as `contract trace` reads them: the lines its story ends with, as
- * data (`contract run --format json`'s `schemas`, docs/ci.md). With `--trace`, `contract run`
- * tells its StoryTeller on the pass that checks the trace file instead (live-trace.ts), and
- * the logs are not read again.
+ * A run's figures from the CSV logs `contract run` saved, read as a stream as `contract trace`
+ * reads them: each periodic schema's — completed cycles, longest response, deadline misses,
+ * overruns (every skipped release), held cycles, ORD's missed ticks — and each asynchronous
+ * module's handling of its events (events handled, handling p99 and max, the longest): the lines
+ * its story ends with, as data (`contract run --format json`'s `schemas` and `eventHandling`,
+ * docs/ci.md). With `--trace`, `contract run` tells its StoryTeller on the pass that checks the
+ * trace file instead (live-trace.ts), and the logs are not read again.
  */
-import { StoryTeller, type NamedSchemaFigures } from '@contract-studio/build-service/trace';
+import { StoryTeller, type EventHandlingFigures, type NamedSchemaFigures } from '@contract-studio/build-service/trace';
 import { closeLogs, openLogFolder, streamTrace } from '../trace-stream.js';
 
-export async function runSchemaFigures(logsDir: string, names: readonly string[]): Promise<NamedSchemaFigures[] | null> {
+export interface RunFigures {
+    schemas: NamedSchemaFigures[];
+    eventHandling: EventHandlingFigures[];
+}
+
+/** The figures a StoryTeller holds once it was told the run. */
+export function runFiguresOf(teller: StoryTeller): RunFigures {
+    return { schemas: teller.schemaFigures(), eventHandling: teller.eventHandlingFigures() };
+}
+
+export async function runFigures(logsDir: string, names: readonly string[]): Promise<RunFigures | null> {
     if (!names.length) return null;
     const logs = await openLogFolder(logsDir, names);
     if (typeof logs === 'string') return null;
     try {
         const teller = new StoryTeller();
         for await (const batch of streamTrace(logs).batches) for (const r of batch) teller.tell(r);
-        return teller.schemaFigures();
+        return runFiguresOf(teller);
     } finally {
         await closeLogs(logs);
     }

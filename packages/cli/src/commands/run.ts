@@ -21,7 +21,7 @@ import { MIN_READY_TIMEOUT_SECONDS, addStdinEntry, cpuMissingFrom, emptyStdinEnt
 import { safeName } from '../terminal-text.js';
 import { refusedDefaultLogs, refusedLogsOut, refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';
 import { failureText, moduleFailures, problemLines } from './run-problems.js';
-import { runSchemaFigures } from './run-schemas.js';
+import { runFigures, runFiguresOf } from './run-schemas.js';
 import { loadRunModel, startProblem, stdinProblem } from './run-model-checks.js';
 
 /** Saved logs of at least this many bytes: `--trace`'s final check of its file is said before it begins. */
@@ -299,10 +299,11 @@ export const runCommand: Command = {
         const leftovers = artifacts?.runDirLeftovers ?? [];
         const leftOut = artifacts?.skipped ?? [];
         const failures = moduleFailures(outcome.runLines, outcome.result.limitHit, realtime);
-        const schemas = opts.format !== 'json' ? null : teller && trace ? teller.schemaFigures() : await runSchemaFigures(logsDir, logs).catch(() => null);
+        const figures = opts.format !== 'json' ? null : teller && trace ? runFiguresOf(teller) : await runFigures(logsDir, logs).catch(() => null);
+        const schemas = figures?.schemas ?? null, eventHandling = figures?.eventHandling ?? null;
         const extra = {
             logsDir: logs.length ? logsDir : null, logs, logsRefused: savedLogs.refused, previousLogs: savedLogs.movedAside,
-            logsLeftOut: leftOut, moduleFailures: failures, runDirLeftovers: leftovers, trace, schemas, output: outcome.runLines,
+            logsLeftOut: leftOut, moduleFailures: failures, runDirLeftovers: leftovers, trace, schemas, eventHandling, output: outcome.runLines,
         };
         const problems = problemLines(outcome.result.issues ?? [], failures, realtime);
         const notSaved = savedLogs.refused.map((r) => `log ${r.replace(/: /, ' not written: ')}`);

@@ -7,7 +7,7 @@
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { runSchemaFigures } from '../../src/commands/run-schemas.js';
+import { runFigures } from '../../src/commands/run-schemas.js';
 import { readLogs } from './csv-log.js';
 import { contract, seededScratchCopy, type CliRun, type Scratch } from './harness.js';
 
@@ -54,10 +54,14 @@ describe('contract trace on a recorded tutorial run (bwrap)', () => {
     });
 
     it("gives the schema's figures told on the trace file's check, as a read of the saved logs of their own gives them", async () => {
-        const out = JSON.parse(run.stdout) as { logs: string[]; schemas: { schema: string; completedCycles: number }[] };
+        const out = JSON.parse(run.stdout) as { logs: string[]; schemas: { schema: string; completedCycles: number }[]; eventHandling: { module: string; handled: number }[] };
         // (schemaCommande2 too when SUP's SECOND came in time to activate it)
         expect(out.schemas.find((s) => s.schema === 'schemaCommande1')?.completedCycles).toBeGreaterThan(0);
-        expect(out.schemas).toEqual(await runSchemaFigures(scratch.logs, out.logs));
+        const figures = await runFigures(scratch.logs, out.logs);
+        expect(out.schemas).toEqual(figures?.schemas);
+        expect(out.eventHandling).toEqual(figures?.eventHandling);
+        // MAB's handler of the events MAA:0 =* MAB:0 brings it (its event_handled records)
+        expect(out.eventHandling.find((m) => m.module === 'MAB')?.handled).toBeGreaterThan(0);
     });
 
     it('tells every rule change of SUP with its cause: FIRST on elapsed=1ms, SECOND after MAA\'s "disconnected"', () => {
