@@ -173,8 +173,11 @@ function trimmedOf(t: Trimmed): NonNullable<SimulateResponse['trimmed']> {
   return { line: t.line, timeNs: t.timeNs, ...(t.bareLine !== undefined ? { bareLine: t.bareLine, bareTimeNs: t.bareTimeNs ?? 0 } : {}), message };
 }
 
-/** A step as answered: its lists kept while the answer's budget lasts (the small ones first), the rest counted. */
-function stepOf(s: StepResult, budget: { left: number }): SimulateStep {
+/**
+ * A step as answered: its lists kept while the answer's budget lasts (the small ones first), the
+ * rest counted. Also what scripts/record-mission-steps.mjs records the Monitor's simulation fixture with.
+ */
+export function stepOf(s: StepResult, budget: { left: number }): SimulateStep {
   const rec = s.record;
   let dropped = rec.dropped ?? 0;
   const cut = <T>(xs: T[] | undefined): T[] => {

@@ -6,9 +6,12 @@ import { MonitorModel } from '../monitor/monitor-model.js';
 import { activeSchemas } from '../monitor/active-schemas.js';
 import { stepsToTrace } from '@contract-studio/simulator/trace';
 
-// the step records of a real simulation of examples/tutorial (`contract simulate examples/tutorial
-// scenarios/mission.scenario --format json`): GLB.mission activates SUP.action, MAA:2 "disconnected"
-// at 300 ms (SECOND, schemaCommande1), MSC:1 at 1 s (FOURTH, schemaCommande2, SUP.action stopped)
+// the steps of a real simulation of examples/tutorial's scenarios/mission.scenario as POST
+// /api/simulate answers them: GLB.mission activates SUP.action, MAA:2 "disconnected" at 300 ms
+// (SECOND, schemaCommande1), MSC:1 at 1 s (FOURTH, schemaCommande2, SUP.action stopped). Recorded
+// with the current simulator by scripts/record-mission-steps.mjs (run it again after a change of
+// the simulator's records: `npm run build:server -w packages/web-ide && node
+// packages/web-ide/scripts/record-mission-steps.mjs`)
 const steps = JSON.parse(readFileSync(fileURLToPath(new URL('./fixtures/tutorial-mission-steps.json', import.meta.url)), 'utf8')) as SimulateStep[];
 const releasesIn = (schema: string) => steps.flatMap((s) => s.log ?? []).filter((l) => l.who === 'ORD' && l.line.endsWith(`(${schema})`) && l.line.startsWith('release ')).length;
 
@@ -27,9 +30,9 @@ describe('a simulation in the Monitor', () => {
       expect(at(1.5e6).supervisors.get('SUP')?.functions.get('action')?.state).toBe('running');
       expect(at(1.5e6).supervisors.get('GLB')?.functions.get('mission')?.state).toBe('running');
       expect(model.live.supervisors.get('SUP')?.functions.get('action')?.state).toBe('stopped');
-      // FIRST holds MAA and MAB (its event schema), SECOND asked ORD for schemaCommande1
+      // FIRST started its event schema and holds its modules MAA and MAB, SECOND asked ORD for schemaCommande1
       const first = at(100e6);
-      expect(first.supervisors.get('SUP')!.rules.get('action.FIRST')?.started).toEqual(['MAA', 'MAB']);
+      expect([...first.supervisors.get('SUP')!.rules.get('action.FIRST')!.started].sort()).toEqual(['MAA', 'MAB', 'schemaReceptionMessage']);
       expect(activeSchemas(first, [{ name: 'schemaReceptionMessage', kind: 'event', modules: ['MAA', 'MAB'] }])).toEqual([{ name: 'schemaReceptionMessage', kind: 'event', by: 'SUP.action.FIRST' }]);
       const second = at(500e6);
       expect(second.supervisors.get('SUP')!.rules.get('action.SECOND')?.started).toContain('schemaCommande1');
@@ -80,6 +83,9 @@ describe('a simulation in the Monitor', () => {
     // MAA:2 "disconnected" received by SUP on its port 2; SUP's notification received by GLB
     expect(model.live.eventFlows.get('MAA:2->SUP:2')?.count).toBe(1);
     expect(model.live.eventFlows.get('SUP:1->GLB:0')?.count).toBe(1);
+    // with their values, as the current simulator writes them (a fixture of an older one had none)
+    expect(model.live.eventFlows.get('MAA:2->SUP:2')).toMatchObject({ lastValue: '"disconnected"' });
+    expect(model.live.eventFlows.get('SUP:1->GLB:0')).toMatchObject({ lastValue: '"commutation"' });
     expect(model.live.unknownLines).toBe(0);
     // an answer without them (an older server): the releases still come from ORD's lines, nothing else does
     const older = fold(steps.map(({ records: _r, ...s }) => s));
