@@ -576,9 +576,9 @@ static void schedule_handling(SimWorld *w, int i, int what, int64_t at, int64_t 
  *  `port`, as libmodule's request loop does: it takes it (GetEventId: event_received) when its
  *  handler of the previous one has ended, and its handler ends `exec` later (the module reads its
  *  mailbox again: event_handled). A crashed module takes nothing. */
-static void module_event(SimWorld *w, const char *dst, const char *src, int src_port, int port) {
+static int module_event(SimWorld *w, const char *dst, const char *src, int src_port, int port) {
     int i = module_index(w, dst, 1);
-    if (i < 0 || w->mods[i].crashed) return;
+    if (i < 0 || w->mods[i].crashed) return 0;
     SimModule *m = &w->mods[i];
     int64_t took = m->exec_once >= 0 ? m->exec_once : m->exec_ns >= 0 ? m->exec_ns : 0;
     m->exec_once = -1;
@@ -588,19 +588,20 @@ static void module_event(SimWorld *w, const char *dst, const char *src, int src_
     m->handling++;
     m->busy_until = start + took;
     schedule_handling(w, i, 2, m->busy_until, start, src, src_port, port);
+    return 1;
 }
 
 /** Delivers an event of `src`:`port` to every supervisor subscribed to it, and to the
- *  asynchronous modules an event flow connects to it; returns how many supervisors. */
+ *  asynchronous modules an event flow connects to it; returns how many received it. */
 static int deliver_event(SimWorld *w, const char *src, int port, const void *data, size_t size) {
+    int n = 0;
     for (int k = 0; k < w->nevflows;) {
         SimEventFlow e = w->evflows[k];
         if (e.src_port != port || strcmp(e.src, src) != 0) { k++; continue; }
         if (e.oneshot) w->evflows[k] = w->evflows[--w->nevflows]; /* spent by this event */
         else k++;
-        module_event(w, e.dst, src, port, e.dst_port);
+        n += module_event(w, e.dst, src, port, e.dst_port);
     }
-    int n = 0;
     for (int s = 0; s < w->nsups; s++) {
         SimSup *p = &w->sups[s];
         for (int i = 0; i < p->nsubs; i++) {

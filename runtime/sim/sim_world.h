@@ -58,7 +58,8 @@ int sim_world_start(SimWorld *w, const char *sup, const char *fn, const char *ar
 int sim_world_stop(SimWorld *w, const char *sup, const char *fn, char *err, size_t errlen);
 /** Module (or supervisor, or "ORD") `module` emits on out event port `port` the value written
  *  in `value_text` (Cactal value syntax; empty: the type's default). Returns the number of
- *  supervisors it was delivered to, or -1 and a message (unparsable value, crashed module). */
+ *  supervisors and asynchronous modules (through a connected event flow) it was delivered to, or
+ *  -1 and a message (unparsable value, crashed module). */
 int sim_world_event(SimWorld *w, const char *module, int port, const char *value_text, char *err,
                     size_t errlen);
 /** The module crashes: not running, never acks a release again (also one not started yet). -1 and

@@ -41,6 +41,14 @@ describe("an asynchronous module's handling of the events of its event flows", (
         ]);
     }, 240_000);
 
+    it('counts the module among those an event was delivered to (the report says nobody received it only when no supervisor nor flow took it)', async () => {
+        const project = await prepared(TUTORIAL);
+        const s = loadScenario('d.scenario', 'd.scenario', ['finish MAB after 0', 'start SUP.action(consigne = {1.0, 2.0, 3.0})', `t=100ms MAA:0 ${MESSAGE}`, 't=300ms MAA:2 "disconnected"', `t=400ms MAA:0 ${MESSAGE}`].join('\n'), project.index);
+        const r = await runLoadedScenario(project, s);
+        // at 100 ms SUP (subscribed to MAA:0) and MAB (MAA:0 =* MAB:0); at 400 ms neither: FIRST's undo ended both
+        expect(r.steps.filter((x) => x.kind === 'event').map((x) => x.record.delivered)).toEqual([2, 1, 0]);
+    }, 240_000);
+
     it('takes no event once the flow is disconnected (SUP undoes schemaReceptionMessage on "disconnected"), and a handler whose module crashed never ends', async () => {
         expect(await mabRecords([`t=100ms MAA:0 ${MESSAGE}`, 't=300ms MAA:2 "disconnected"', `t=400ms MAA:0 ${MESSAGE}`])).toEqual([
             '100ms event_received MAA:0 from_port=0 latency_ns=0',

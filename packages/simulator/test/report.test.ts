@@ -129,7 +129,7 @@ describe('the text report\'s times', () => {
         // delivered to nobody because it failed, not for want of a subscriber (field test ft58c, defect 2)
         expect(text).not.toContain('no supervisor is subscribed');
         const ok = { ...failedEvent, ok: true, message: undefined, record: { ...failedEvent.record, ok: true } };
-        expect(textReport([{ ...result, passed: true, failures: [], steps: [ok] } as unknown as ScenarioResult])).toContain('(no supervisor is subscribed to this event: nobody received it)');
+        expect(textReport([{ ...result, passed: true, failures: [], steps: [ok] } as unknown as ScenarioResult])).toContain('(no supervisor is subscribed to this event, no event flow connected to it: nobody received it)');
         const junit = junitReport([result]);
         expect(junit).toMatch(/<testsuites name="contract simulate" tests="1" failures="1">/);
         expect(junit).toMatch(/<testsuite name="x.scenario" tests="1" failures="1"/);

@@ -63,7 +63,7 @@ export interface StepRecord {
     timeNs: number;
     verb: string;
     ok: boolean;
-    /** Events: how many supervisors received it. */
+    /** Events: how many supervisors and asynchronous modules (through a connected event flow) received it. */
     delivered?: number;
     error?: string;
     expected?: string;

@@ -147,7 +147,7 @@ export function* textScenarioParts(r: ScenarioResult, options: { verbose?: boole
         // what the user's functions printed (with or without --verbose: docs/simulation.md §2), under the step's own lines
         out.push(...outputLines(s.record.output, ' '.repeat(26)));
         // (an event that failed was delivered to nobody for its own reason, said below: not for want of a subscriber)
-        if (s.kind === 'event' && s.ok && s.record.delivered === 0) out.push('                        (no supervisor is subscribed to this event: nobody received it)');
+        if (s.kind === 'event' && s.ok && s.record.delivered === 0) out.push('                        (no supervisor is subscribed to this event, no event flow connected to it: nobody received it)');
         if (!s.ok && s.message) out.push(`       ${safe(s.message)}`);
         if (out.length >= TEXT_LINES_PER_PART) {
             yield out.join('\n') + '\n';
