@@ -5,7 +5,7 @@
  *   `ok: run finished (exit 0)` and `contract trace`'s line of counts had no count of failed posts;
  * - `--werror`: a warning in a protected region fails the build, shown; without it the build passes.
  */
-import { readFileSync, writeFileSync } from 'node:fs';
+import { readdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { runCli } from '../src/cli.js';
@@ -59,6 +59,56 @@ describe('a lost event', () => {
         expect(await runCli(['trace', join(root, 'lossy-logs')], story)).toBe(0);
         expect(story.stdout).toContain(', 3 event posts that failed (the event lost), ');
         expect(story.stdout).toContain(`\n${lost[0]!.message}\n`);
+    }, 240_000);
+
+    it('lost by a running subscriber too slow to take them (its mailbox full for over 2 s): the failed posts waited 2 s each, events-lost, exit 4', async () => {
+        await newProject('slow');
+        // LOC and CTL released side by side (no precedence): LOC is the subscriber, running, that
+        // reads no request for 5 s in its first release; CTL, 300 ms into its own, posts a burst of 15
+        // to it. The first ones fill LOC's mailbox; each post then waits the 2 s PostEvent waits for
+        // room and fails (the event lost), until LOC reads its mailbox again.
+        const schema = join(root, 'slow', 'schema.contract');
+        const graphless = readFileSync(schema, 'utf8').replace(/ *scheduling graph \{ LOC -> CTL; \}\n/, '');
+        expect(graphless).not.toContain('scheduling graph');
+        writeFileSync(schema, graphless);
+        expect(await runCli(['generate', 'slow'], capture(root))).toBe(0);
+        region('slow', 'LOC', 'protect_additional_import_LOC', '#include <unistd.h>');
+        region('slow', 'LOC', 'protect_exec_LOC', '    { static int calls = 0; if (++calls == 1) sleep(5); }');
+        region('slow', 'CTL', 'protect_additional_import_CTL', '#include <unistd.h>');
+        region('slow', 'CTL', 'protect_exec_CTL', [
+            '    { static int calls = 0; if (++calls == 1) { usleep(300000); SubscribeUserToEvent("LOC", 5, 0, EVENT_CONTINUOUS);',
+            '      for (int i = 0; i < 15; i++) { strcpy(status, "late"); PostEvent(&status); } } }',
+        ].join('\n'));
+        const io = capture(root);
+        const code = await runCli(['run', 'slow', '--sandbox', 'bwrap', '--duration', '8s', '--logs', 'slow-logs', '--format', 'json'], io);
+        const out = JSON.parse(io.stdout) as { result: { ok: boolean; issues: { kind: string; module?: string; message: string }[] } };
+        const said = JSON.stringify(out.result.issues, null, 1);
+
+        // the record: CTL's posts to LOC, the failed ones each 2 s after the post before it (the wait for
+        // room in a running subscriber's full mailbox; a post to one not running fails at once)
+        const logs = join(root, 'slow-logs');
+        const ctl = readFileSync(join(logs, readdirSync(logs).find((f) => f.startsWith('CTL_'))!), 'utf8');
+        const posts = ctl.split('\n').filter((l) => /,event_posted,LOC,0,/.test(l)).map((l) => ({ ns: Number(l.split(',')[0]), failed: l.endsWith('to_port=5 failed') }));
+        const failed = posts.filter((p) => p.failed);
+        expect(posts, ctl).toHaveLength(15);
+        expect(failed.length, ctl).toBeGreaterThanOrEqual(1);
+        for (const p of failed) {
+            const before = posts[posts.indexOf(p) - 1]!;
+            expect(p.ns - before.ns, `a failed post ${(p.ns - before.ns) / 1e6} ms after the post before it`).toBeGreaterThanOrEqual(1.9e9);
+        }
+        // LOC was running all along, and read its mailbox again: the posts after it had room reached it
+        expect(posts.at(-1)!.failed, ctl).toBe(false);
+
+        // the run issue, in the words the docs give, naming the runtime's cause: LOC's full mailbox
+        const lost = out.result.issues.filter((i) => i.kind === 'events-lost');
+        expect(lost, said).toHaveLength(1);
+        expect(lost[0]!.module).toBe('CTL');
+        const one = failed.length === 1;
+        expect(lost[0]!.message).toMatch(new RegExp(`^${failed.length} ${one ? 'event' : 'events'} CTL posted to LOC ${one ? 'was' : 'were'} lost \\(CTL:0 -> LOC:5\\): ` +
+            `${one ? 'its post' : 'their posts'} failed \\(PostEvent gives up after waiting 2 s for room in LOC's full mailbox, at once when LOC is not running\\); ` +
+            'the last: EVENT request to LOC: mailbox full: the module did not read its requests in time [^\\n]*$'));
+        expect(out.result.ok).toBe(false);
+        expect(code).toBe(4);
     }, 240_000);
 });
 
