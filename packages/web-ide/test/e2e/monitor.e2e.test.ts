@@ -561,7 +561,8 @@ describe('Monitor in headless Chromium', () => {
     await page.locator('.monitor-sources').selectOption('dir:recorded');
     await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
     writeFileSync(join(dir, 'ORD_1-Jan-2026-00h00m00s.csv'), 'mono_ns,wall_time,module,event,peer,port,size,detail\n3000000,w,ORD,scheduler,,,0,activate schemaCommande1\n');
-    await page.waitForTimeout(1500); // the watcher's change reaches the page
+    // the watcher's change reaches the page: the tree lists the new log (the Monitor hears of it in the same update)
+    await expect.poll(() => page.evaluate(() => (window as any).__ide.workspace.hasFile('growing-run/ORD_1-Jan-2026-00h00m00s.csv')), { timeout: 15_000 }).toBe(true);
     await page.locator('.monitor-sources').selectOption('dir:growing-run');
     await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('2 CSV log(s) in growing-run');
     expect(await page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(3);
