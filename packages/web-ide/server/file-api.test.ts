@@ -149,7 +149,8 @@ describe('file API over HTTP', () => {
     expect(read.body.content).toContain('caf\uFFFD');
     // what the editor would save: its text of the file, one line added
     const edited = `${read.body.content as string}int z;\n`;
-    for (const headers of [{}, { 'if-match': `"${read.body.version as string}"` }]) {
+    const blindAndOnItsVersion: Array<Record<string, string>> = [{}, { 'if-match': `"${read.body.version as string}"` }];
+    for (const headers of blindAndOnItsVersion) {
       const put = await call('PUT', '/api/file?path=sub/latin1.c', edited, headers);
       expect(put.status).toBe(409);
       expect(put.body.error).toMatch(/^sub\/latin1\.c holds bytes that are not UTF-8 \(line 2: Latin-1 or binary\).*nothing was written/);

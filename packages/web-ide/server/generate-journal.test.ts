@@ -7,6 +7,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { cpSync, readFileSync, readdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
+import type { GenerateResponse } from './api-types.js';
 import { startTempIdeServer, type TempIdeServer } from './temp-ide-server.test-support.js';
 
 const TUTORIAL = join(fileURLToPath(new URL('../../..', import.meta.url)), 'examples/tutorial');
@@ -23,9 +24,9 @@ beforeAll(async () => {
 });
 afterAll(() => server.close());
 
-async function generate(): Promise<{ status: number; body: { warnings: Array<{ file: string; message: string }>; errors: unknown[]; orphaned: string[] } }> {
+async function generate(): Promise<{ status: number; body: GenerateResponse }> {
   const res = await fetch(`${server.ide.url}/api/generate`, { method: 'POST', headers: { 'content-type': 'application/json', 'x-contract-token': server.ide.token }, body: JSON.stringify({ project: '' }) });
-  return { status: res.status, body: await res.json() };
+  return { status: res.status, body: (await res.json()) as GenerateResponse };
 }
 
 describe('Generate All finishing an interrupted rename of the workspace\'s own project', () => {

@@ -11,6 +11,7 @@ import { cpSync, existsSync, readFileSync, readdirSync } from 'node:fs';
 import { createHash } from 'node:crypto';
 import { join, relative } from 'node:path';
 import { fileURLToPath } from 'node:url';
+import type { GenerateResponse, RenameEntityResponse } from './api-types.js';
 import { FileLocks } from './file-locks.js';
 import { GeneratedTreeLock } from './generated-tree-lock.js';
 import { renameEntity, type RenamedFile } from './rename-api.js';
@@ -29,9 +30,10 @@ beforeAll(async () => {
 });
 afterAll(() => server.close());
 
-async function post(path: string, body: unknown): Promise<{ status: number; body: any }> {
+/** POST /api/generate (its answer a GenerateResponse) or /api/rename-entity (a RenameEntityResponse). */
+async function post<Answer extends GenerateResponse | RenameEntityResponse>(path: string, body: unknown): Promise<{ status: number; body: Answer }> {
   const res = await fetch(`${server.ide.url}${path}`, { method: 'POST', headers: { 'content-type': 'application/json', 'x-contract-token': server.ide.token }, body: JSON.stringify(body) });
-  return { status: res.status, body: await res.json() };
+  return { status: res.status, body: (await res.json()) as Answer };
 }
 
 /** The `.contract` files of `project` that name MSC, as the editor's rename to MSK leaves them, on the version on disk. */
@@ -63,16 +65,16 @@ const body = (project: string) => ({ project, from: 'MSC', to: 'MSK', kind: 'mod
 describe('an IDE rename stopped half-way is finished by the next Generate All', () => {
   it('stopped after its journal and the tree carry-over: Generate All writes the renamed files, the project as after the whole rename', async () => {
     const ws = server.ws;
-    for (const p of ['whole', 'stopped']) expect((await post('/api/generate', { project: p })).status).toBe(200);
+    for (const p of ['whole', 'stopped']) expect((await post<GenerateResponse>('/api/generate', { project: p })).status).toBe(200);
 
     const wholeAsked = body('whole');
     expect(wholeAsked.files.length).toBeGreaterThan(1);
-    const whole = await post('/api/rename-entity', wholeAsked);
+    const whole = await post<RenameEntityResponse>('/api/rename-entity', wholeAsked);
     expect(whole.status).toBe(200);
-    expect(whole.body.written.map((w: { file: string }) => w.file)).toEqual(wholeAsked.files.map((f) => f.path));
+    expect(whole.body.written.map((w) => w.file)).toEqual(wholeAsked.files.map((f) => f.path));
     for (const f of wholeAsked.files) expect(readFileSync(join(ws, f.path), 'utf8')).toBe(f.text);
     expect(existsSync(join(ws, 'whole/src-gen/.contract-rename.json'))).toBe(false);
-    expect((await post('/api/generate', { project: 'whole' })).status).toBe(200);
+    expect((await post<GenerateResponse>('/api/generate', { project: 'whole' })).status).toBe(200);
 
     // the same rename, the server "killed" once the generated tree is carried over
     const asked = body('stopped');
@@ -82,9 +84,9 @@ describe('an IDE rename stopped half-way is finished by the next Generate All', 
     expect(existsSync(join(ws, 'stopped/src-gen/generated/architecture/modules/MSK_mod/module.c'))).toBe(true); // the tree renamed...
     for (const f of asked.files) expect(readFileSync(join(ws, f.path), 'utf8')).toMatch(/\bMSC\b/); // ...the model not
 
-    const generated = await post('/api/generate', { project: 'stopped' });
+    const generated = await post<GenerateResponse>('/api/generate', { project: 'stopped' });
     expect(generated.status).toBe(200);
-    expect(generated.body.warnings.map((w: { message: string }) => w.message)).toContainEqual(expect.stringMatching(/^finished the rename of module MSC -> MSK that was interrupted .*: \d+ file\(s\) written, 0 already renamed/));
+    expect(generated.body.warnings.map((w) => w.message)).toContainEqual(expect.stringMatching(/^finished the rename of module MSC -> MSK that was interrupted .*: \d+ file\(s\) written, 0 already renamed/));
     expect(existsSync(join(ws, 'stopped/src-gen/.contract-rename.json'))).toBe(false);
 
     const a = snapshot(join(ws, 'whole'));

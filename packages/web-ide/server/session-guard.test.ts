@@ -93,7 +93,8 @@ describe('session token', () => {
 
   it('every /api route family answers 401 without the token or with a wrong one, and changes nothing', async () => {
     for (const [method, path, body] of ROUTES) {
-      for (const headers of [{}, { 'x-contract-token': 'wrong-token-wrong-token' }, { cookie: `contract_session_${port}=wrong-token-wrong-token` }, { cookie: `contract_session_1=${ide.token}` }]) {
+      const refused: Array<Record<string, string>> = [{}, { 'x-contract-token': 'wrong-token-wrong-token' }, { cookie: `contract_session_${port}=wrong-token-wrong-token` }, { cookie: `contract_session_1=${ide.token}` }];
+      for (const headers of refused) {
         const { status } = await raw(method, path, { ...(body ? JSON_TYPE : {}), ...headers }, body);
         expect(status, `${method} ${path} ${JSON.stringify(headers)}`).toBe(401);
       }

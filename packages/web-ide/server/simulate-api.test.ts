@@ -10,7 +10,7 @@ import { chmodSync, cpSync, existsSync, mkdirSync, mkdtempSync, readdirSync, rea
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { startIdeServer, type IdeServer } from './ide-server.js';
-import type { SimulateResponse } from './api-types.js';
+import type { SimulateDiagnostic, SimulateResponse } from './api-types.js';
 import { MAX_ITEMS_PER_ANSWER } from './simulate-api.js';
 import { stepsToTrace } from '@contract-studio/simulator/trace';
 import { MonitorModel } from '../src/monitor/monitor-model.js';
@@ -35,13 +35,16 @@ afterAll(async () => {
   rmSync(base, { recursive: true, force: true });
 });
 
-async function post(body: unknown, token = ide.token): Promise<{ status: number; json: any }> {
+/** The answer: the run (200), else `{ error }`, with the `diagnostics` of a 422 (nothing ran). */
+type Answer = SimulateResponse & { diagnostics?: SimulateDiagnostic[] };
+
+async function post(body: unknown, token = ide.token): Promise<{ status: number; json: Answer }> {
   const res = await fetch(`${ide.url}/api/simulate`, {
     method: 'POST',
     headers: { 'content-type': 'application/json', 'x-contract-token': token },
     body: typeof body === 'string' ? body : JSON.stringify(body),
   });
-  return { status: res.status, json: await res.json() };
+  return { status: res.status, json: (await res.json()) as Answer };
 }
 
 // a step's record holds what happened up to it (the 1 ms timer too): its last change of the rule
@@ -96,7 +99,7 @@ describe('POST /api/simulate', () => {
     const { status, json } = await post({ scenario: 'start SUP.action\nexpect rule SUP.action.SECNOD active\nt=1ms MAA:2 3\n' });
     expect(status).toBe(422);
     expect(json.error).toMatch(/error\(s\)/);
-    const d = json.diagnostics as Array<{ line: number; column: number; code: string; message: string }>;
+    const d = json.diagnostics ?? [];
     expect(d.find((x) => x.line === 2)?.message).toMatch(/Did you mean 'SECOND'/);
     expect(d.find((x) => x.line === 3)?.code).toBe('scenario-value-type');
   }, 60_000);
@@ -191,8 +194,8 @@ describe('POST /api/simulate', () => {
       expect(status, JSON.stringify(json)).toBe(422);
       expect(json.error).toMatch(/^the project's C does not compile for the simulator: 1 error\(s\) in src-gen\//);
       const line = before.slice(0, at).split('\n').length;
-      expect(json.diagnostics[0]).toMatchObject({ file: 'src-gen/generated/architecture/common/SharedFunctiontestit.h', line, severity: 'error' });
-      expect(json.diagnostics[0].message).toMatch(/oops.* \(in protected region protect_function_impl_testit\)$/);
+      expect(json.diagnostics?.[0]).toMatchObject({ file: 'src-gen/generated/architecture/common/SharedFunctiontestit.h', line, severity: 'error' });
+      expect(json.diagnostics?.[0]?.message).toMatch(/oops.* \(in protected region protect_function_impl_testit\)$/);
       expect(JSON.stringify(json)).not.toContain(join(base, 'cache'));
     } finally {
       writeFileSync(file, before, 'latin1');
