@@ -29,6 +29,7 @@ import { RunController } from './app/run-controller.js';
 import { ViewsController } from './app/views-controller.js';
 import { carryRenamesToGenerated } from './app/rename-carryover.js';
 import { registerIdeCommands } from './app/ide-commands.js';
+import type { IdeHook } from './app/ide-hook.js';
 
 /** Builds the IDE: the parts (src/panels, src/editor, ...), the feature controllers (src/app) and the start-up sequence. */
 async function main(): Promise<void> {
@@ -158,7 +159,9 @@ async function main(): Promise<void> {
   // diagram (the Monitor that Build & Run opens, the Architecture tab) no longer compiles it then
   const whenIdle = window.requestIdleCallback ?? ((run: () => void) => setTimeout(run, 1000));
   whenIdle(() => void import('./views/architecture-view.js').then((m) => m.warmUpLayout()).catch(() => undefined));
-  (window as unknown as { __ide: unknown }).__ide = { workspace, editors, lsp, problems, build, monaco, monitor, simulate, commands, views };
+  // the test hook of the browser tests (app/ide-hook.ts)
+  const hook: IdeHook = { workspace, editors, lsp, problems, build, monaco, monitor, simulate, commands, views };
+  window.__ide = hook;
 }
 
 void main();

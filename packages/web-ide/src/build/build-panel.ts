@@ -396,13 +396,14 @@ export class BuildPanel {
     }
   }
 
-  /** Where the job followed comes from (whole in its tooltip: a narrow panel cuts it). */
-  private setOrigin(text: string): void {
+  /** Where the job followed comes from (whole in its tooltip: a narrow panel cuts it; the browser tests set it). */
+  setOrigin(text: string): void {
     this.originEl.textContent = text;
     this.originEl.title = text;
   }
 
-  private setStatus(status: string, message: string | undefined, running: boolean): void {
+  /** The job's status line (the browser tests set it too). */
+  setStatus(status: string, message: string | undefined, running: boolean): void {
     this.statusEl.textContent = `${status}${message ? ` — ${message}` : ''}`;
     this.statusEl.title = this.statusEl.textContent; // whole, when the row cuts it
     this.statusEl.className = `job-status ${status}`;

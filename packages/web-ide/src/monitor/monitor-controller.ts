@@ -84,7 +84,8 @@ interface Run {
 }
 
 export class MonitorController {
-  private panel: MonitorPanel | undefined;
+  /** The panel once the Monitor was first shown (public for the browser tests: `__ide.monitor`, app/ide-hook.ts). */
+  panel: MonitorPanel | undefined;
   /** Jobs' recorded runs let go (recorded-runs.ts): id -> their label; fetched again when picked. */
   private readonly letGo = new Map<string, string>();
   /**
@@ -100,9 +101,11 @@ export class MonitorController {
   /** Jobs of that list picked while they ran, followed live here: their CSV logs are read from their entry once they ended. */
   private readonly followedFromList = new Set<string>();
   private uses = 0;
-  private readonly runs = new Map<string, Run>();
+  /** The runs of the run list, by entry id (public for the browser tests: `__ide.monitor`, app/ide-hook.ts). */
+  readonly runs = new Map<string, Run>();
   private shown: string | undefined;
-  private symbols: SupervisorSymbols | undefined;
+  /** The supervisors' symbols of the shown run's project, once read (public for the browser tests: `__ide.monitor`, app/ide-hook.ts). */
+  symbols: SupervisorSymbols | undefined;
   /** The project `symbols` were read for. */
   private symbolsProject: string | undefined;
   private previous: HTMLElement | undefined;
@@ -683,8 +686,8 @@ export class MonitorController {
     return symbols;
   }
 
-  /** The schemas of the shown run's project (the language server gives the whole workspace's). */
-  private async projectSchemas(): Promise<ArchSchema[]> {
+  /** The schemas of the shown run's project (the language server gives the whole workspace's; the browser tests call it). */
+  async projectSchemas(): Promise<ArchSchema[]> {
     const project = this.shownProject();
     const all = await this.deps.lsp.architecture();
     return all.filter((sc) => {

@@ -77,7 +77,8 @@ export class MonitorPanel {
   private dirty = false;
   /** Drawn at the next frame whatever `drawn` says (redrawAll). */
   private stale = false;
-  private drawn = { version: -1, cursor: -1, model: undefined as MonitorView | undefined };
+  /** What the last frame drew (the browser tests count frames by its version). */
+  drawn = { version: -1, cursor: -1, model: undefined as MonitorView | undefined };
   /** What the supervisors' list shows: while following live, it is drawn again only when one of these moved. */
   private supsDrawn = { model: undefined as MonitorView | undefined, changes: -1, sups: undefined as SupervisorCatalogue | undefined };
   private schemas: ArchSchema[] = [];

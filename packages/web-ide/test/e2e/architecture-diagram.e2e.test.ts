@@ -7,6 +7,7 @@ import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { startSession, openIde, shot, placeCursor, activeTab, openFile, cursorLine, type Session } from './harness.js';
 import { axeScan, seriousOf } from './axe.js';
 import { writeChainSchema } from './chain-schema.js';
+import type {} from '../../src/app/ide-hook.js';
 
 let s: Session;
 const pane = '.side-pane .arch-canvas';
@@ -64,7 +65,7 @@ describe('architecture diagram docked', () => {
     const svgMarked = () => page.evaluate((sel) => (document.querySelector(sel) as any)?.__seen === true, `${pane} .arch-svg`);
     await page.evaluate((sel) => ((document.querySelector(sel) as any).__seen = true), `${pane} .arch-svg`);
     // read again (what an edit elsewhere, or Build & Run opening the Monitor, does): the same element stays
-    await page.evaluate(() => (window as any).__ide.views.arch.update());
+    await page.evaluate(() => window.__ide.views.arch!.update());
     expect(await svgMarked()).toBe(true);
     // the schema shown changes (its period): a new drawing
     await openFile(page, 'sschema1.contract');

@@ -10,6 +10,8 @@
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { startSession, openIde, shot, placeCursor, openFile, type Session } from './harness.js';
 import { writeChainSchema, CHAIN_MODULES } from './chain-schema.js';
+import type {} from '../../src/app/ide-hook.js';
+import type { LayoutFault } from '../../src/views/layout-faults.js';
 
 let s: Session;
 const pane = '.side-pane .arch-canvas';
@@ -70,7 +72,7 @@ describe('the architecture diagram when ELK fails', () => {
     await s?.close();
   });
 
-  const failLayouts = (fault: string | undefined) => s.page.evaluate((f) => (window as any).__ide.views.arch.failLayouts(f), fault);
+  const failLayouts = (fault: LayoutFault | undefined) => s.page.evaluate((f) => window.__ide.views.arch!.failLayouts(f), fault);
   const emptyPane = () => s.page.evaluate(() => (window as unknown as { __emptyPane: string[] }).__emptyPane);
   /** The pane's drawing once its note says `note` (undefined: no note). */
   const drawnSaying = async (note: RegExp | undefined): Promise<Drawn> => {

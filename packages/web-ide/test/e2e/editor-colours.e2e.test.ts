@@ -11,6 +11,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { Page } from 'playwright-core';
 import { openFile, openIde, placeCursor, shot, startSession, type Session } from './harness.js';
 import { axeScan, seriousOf } from './axe.js';
+import type {} from '../../src/app/ide-hook.js';
 
 /** This file's own port (each browser test file has its own server on its own port). */
 const PORT = 7920;
@@ -43,7 +44,7 @@ async function selectAllAndMeasure(page: Page, anchor: string): Promise<Selectio
       return 0.2126 * ch[0]! + 0.7152 * ch[1]! + 0.0722 * ch[2]!;
     };
     const ratio = (a: Rgba, b: Rgba) => { const [x, y] = [lum(a), lum(b)].sort((p, q) => q - p) as [number, number]; return (x + 0.05) / (y + 0.05); };
-    const editorEl = (window as unknown as { __ide: { editors: { editor: { getDomNode(): HTMLElement | null } } } }).__ide.editors.editor.getDomNode()!;
+    const editorEl = window.__ide.editors.editor.getDomNode()!;
     const editorBg = parse(getComputedStyle(editorEl.querySelector('.monaco-editor-background') as HTMLElement).backgroundColor);
     const selectedEl = editorEl.querySelector('.view-overlays .selected-text') as HTMLElement;
     const selection = over(parse(getComputedStyle(selectedEl).backgroundColor), editorBg);

@@ -12,6 +12,7 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import type { Page } from 'playwright-core';
 import { startSession, openIde, placeCursor, activeValue, waitSaved, shot, SHOTS as SHOTS_DIR, type Session, startTwoBrowsersOn } from './harness.js';
+import type {} from '../../src/app/ide-hook.js';
 
 const canGenerate = await import('@contract-studio/codegen').then((m) => typeof (m as Record<string, unknown>).generateArchitecture === 'function').catch(() => false);
 const SCHED = 'sched.contract';
@@ -28,7 +29,7 @@ const step = (what: string) => {
 };
 const disk = (p = SCHED) => readFileSync(join(s.workspace, p), 'utf8');
 /** The text of a file's model in a page (the tab's text, shown or not). */
-const tabText = (page: Page, path = SCHED) => page.evaluate((p) => (window as any).__ide.workspace.files.get(p).model.getValue() as string, path);
+const tabText = (page: Page, path = SCHED) => page.evaluate((p) => window.__ide.workspace.files.get(p)!.model.getValue() as string, path);
 /** What has the keyboard focus: inside the conflict view, the main editor, or which element. */
 const focusIn = (page: Page) => page.evaluate(() => {
   const el = document.activeElement;
@@ -170,7 +171,7 @@ describe('editor defects of the field test', () => {
     await b.locator('#conflict-save-right').click();
     const why = b.locator('.conflict-overlay .conflict-error');
     await why.waitFor({ timeout: 5000 });
-    const marked = await b.evaluate(() => ((window as any).__ide.monaco.editor.getModels() as Array<{ getValue(): string }>).map((m) => m.getValue()).find((t) => t.includes('<<<<<<< yours'))!);
+    const marked = await b.evaluate(() => (window.__ide.monaco.editor.getModels() as Array<{ getValue(): string }>).map((m) => m.getValue()).find((t) => t.includes('<<<<<<< yours'))!);
     const line = marked.split('\n').findIndex((l) => l.startsWith('<<<<<<<')) + 1;
     expect(await why.textContent()).toContain(`line ${line}`);
     expect(await b.locator('.conflict-overlay').count()).toBe(1);
@@ -180,7 +181,7 @@ describe('editor defects of the field test', () => {
     const resolved = marked.replace(/<<<<<<< yours\n[^]*?>>>>>>> on disk\n/, '        MSD; // mine and theirs\n');
     expect(resolved).not.toContain('<<<<<<<');
     await b.evaluate(({ resolved }) => {
-      const m = ((window as any).__ide.monaco.editor.getModels() as Array<{ getValue(): string; setValue(t: string): void; isDisposed(): boolean }>).find((x) => !x.isDisposed() && x.getValue().includes('<<<<<<< yours'))!;
+      const m = (window.__ide.monaco.editor.getModels() as Array<{ getValue(): string; setValue(t: string): void; isDisposed(): boolean }>).find((x) => !x.isDisposed() && x.getValue().includes('<<<<<<< yours'))!;
       m.setValue(resolved);
     }, { resolved });
     await b.locator('#conflict-save-right').click();
@@ -200,7 +201,7 @@ describe('editor defects of the field test', () => {
     /** The view's two sides (its models are named /N/disk/… and /N/yours/…). */
     const sides = async () => b.evaluate((title) => {
       const n = title!.replace('conflict-title-', '');
-      const models = ((window as any).__ide.monaco.editor.getModels() as Array<{ uri: { scheme: string; path: string }; getValue(): string; isDisposed(): boolean }>)
+      const models = (window.__ide.monaco.editor.getModels() as Array<{ uri: { scheme: string; path: string }; getValue(): string; isDisposed(): boolean }>)
         .filter((m) => !m.isDisposed() && m.uri.scheme === 'conflict' && m.uri.path.startsWith(`/${n}/`));
       return { left: models.find((m) => m.uri.path.includes('/disk/'))?.getValue(), right: models.find((m) => m.uri.path.includes('/yours/'))?.getValue() };
     }, await viewId());
@@ -210,7 +211,7 @@ describe('editor defects of the field test', () => {
     expect(merging).toContain('<<<<<<< yours');
     step('again: the same disk text read again');
     // what a reconnect or a late file event does: the disk still holds what the left side shows
-    await b.evaluate((p) => (window as any).__ide.workspace.externalChange(p), SCHED);
+    await b.evaluate((p) => window.__ide.workspace.externalChange(p), SCHED);
     await b.waitForTimeout(300);
     expect(await viewId()).toBe(first);
     expect(await sides()).toEqual({ left: theirs, right: merging });
@@ -235,7 +236,7 @@ describe('editor defects of the field test', () => {
     expect(edited).not.toBe(withThird);
     await b.evaluate(({ title, text }) => {
       const n = title!.replace('conflict-title-', '');
-      const m = ((window as any).__ide.monaco.editor.getModels() as Array<{ uri: { scheme: string; path: string }; setValue(t: string): void; isDisposed(): boolean }>)
+      const m = (window.__ide.monaco.editor.getModels() as Array<{ uri: { scheme: string; path: string }; setValue(t: string): void; isDisposed(): boolean }>)
         .find((x) => !x.isDisposed() && x.uri.scheme === 'conflict' && x.uri.path.startsWith(`/${n}/yours/`))!;
       m.setValue(text);
     }, { title: second, text: edited });
@@ -310,7 +311,7 @@ describe('editor defects of the field test', () => {
     await input.waitFor({ state: 'visible', timeout: 5000 });
     await a.keyboard.type('5');
     await a.keyboard.press('Enter');
-    await expect.poll(() => a.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber)).toBe(5);
+    await expect.poll(() => a.evaluate(() => window.__ide.editors.editor.getPosition()!.lineNumber)).toBe(5);
     expect(await focusIn(a)).toBe('editor');
   });
 
@@ -338,7 +339,7 @@ describe.skipIf(!canGenerate)('typing in a protected region right after another 
     g = await startSession({ buildService: false });
     await generate();
     await openIde(g);
-    await g.page.evaluate((p) => (window as any).__ide.editors.open(p), MAA);
+    await g.page.evaluate((p) => window.__ide.editors.open(p), MAA);
     await g.page.waitForFunction((p) => document.querySelector('.tab.active')?.getAttribute('data-path') === p, MAA);
   }, 90_000);
   afterAll(async () => {

@@ -11,6 +11,7 @@ import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { startSession, openIde, shot, placeCursor, activeValue, waitSaved, type Session } from './harness.js';
+import type {} from '../../src/app/ide-hook.js';
 
 const canGenerate = await import('@contract-studio/codegen').then((m) => typeof (m as Record<string, unknown>).generateArchitecture === 'function').catch(() => false);
 const MAA = 'src-gen/generated/architecture/modules/MAA_mod/module.c';
@@ -80,7 +81,7 @@ describe.skipIf(!canGenerate)('the server guards generated C against stale tabs'
     await waitSaved(page);
     await expect.poll(() => page.locator('.toast.error', { hasText: `Could not save ${MAA}` }).count()).toBe(0); // out of date once saved
     // the cursor stayed in the region it was typing in
-    const line = await page.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber);
+    const line = await page.evaluate(() => window.__ide.editors.editor.getPosition()!.lineNumber);
     expect(merged.split('\n')[line - 1]).toContain('typed in a stale tab');
     await shot(page, '10-stale-tab-merged');
   });
@@ -120,7 +121,7 @@ describe.skipIf(!canGenerate)('the server guards generated C against stale tabs'
     await page.waitForTimeout(4500);
     expect(puts.length).toBe(sent);
     // "Reload from disk" drops the refused text and shows the file on disk
-    await page.evaluate(() => void (window as any).__ide.editors.editor.getAction('contract.reloadFromDisk').run()); // resolves after the dialog
+    await page.evaluate(() => void window.__ide.editors.editor.getAction('contract.reloadFromDisk')!.run()); // resolves after the dialog
     await page.locator('.dialog .btn.danger', { hasText: 'Reload' }).click();
     await expect.poll(() => activeValue(page)).toBe(onDisk);
     await waitSaved(page);

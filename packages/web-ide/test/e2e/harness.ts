@@ -4,6 +4,7 @@ import { tmpdir } from 'node:os';
 import { basename, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { startIdeServer, type IdeServer } from '../../server/ide-server.js';
+import type {} from '../../src/app/ide-hook.js';
 
 export const PKG = fileURLToPath(new URL('../..', import.meta.url));
 export const TUTORIAL = join(PKG, '../../examples/tutorial');
@@ -77,8 +78,8 @@ export async function shot(page: Page, name: string): Promise<void> {
 /** Puts the cursor of the active editor on the first occurrence of `text` (offset chars into it). */
 export async function placeCursor(page: Page, text: string, offset = 0, occurrence = 0): Promise<void> {
   const ok = await page.evaluate(({ text, offset, occurrence }) => {
-    const ide = (window as unknown as { __ide: { editors: { editor: { getModel(): { getValue(): string; getPositionAt(o: number): unknown }; setPosition(p: unknown): void; focus(): void; revealPositionInCenter(p: unknown): void } } } }).__ide;
-    const model = ide.editors.editor.getModel();
+    const ide = window.__ide;
+    const model = ide.editors.editor.getModel()!;
     const value = model.getValue();
     let at = -1;
     for (let i = 0; i <= occurrence; i++) at = value.indexOf(text, at + 1);
@@ -99,7 +100,7 @@ export async function placeCursor(page: Page, text: string, offset = 0, occurren
  */
 export async function waitRenameLocation(page: Page, timeout = 30_000): Promise<void> {
   await page.waitForFunction(async () => {
-    const ide = (window as unknown as { __ide: { lsp: { request(m: string, p: unknown): Promise<unknown> }; editors: { editor: { getModel(): { uri: { toString(): string } } | null; getPosition(): { lineNumber: number; column: number } | null } } } }).__ide;
+    const ide = window.__ide;
     const model = ide.editors.editor.getModel();
     const at = ide.editors.editor.getPosition();
     if (!model || !at) return false;
@@ -122,7 +123,7 @@ export async function renameWithF2(page: Page, file: string, text: string, offse
 }
 
 export async function activeValue(page: Page): Promise<string> {
-  return page.evaluate(() => (window as unknown as { __ide: { editors: { editor: { getModel(): { getValue(): string } } } } }).__ide.editors.editor.getModel().getValue());
+  return page.evaluate(() => window.__ide.editors.editor.getModel()!.getValue());
 }
 
 export async function activeTab(page: Page): Promise<string | null> {
@@ -197,7 +198,7 @@ export async function openAnotherTab(s: Session, page: Page): Promise<Page> {
 
 /** The line of the active editor's cursor (1-based). */
 export async function cursorLine(page: Page): Promise<number> {
-  return page.evaluate(() => (window as unknown as { __ide: { editors: { editor: { getPosition(): { lineNumber: number } } } } }).__ide.editors.editor.getPosition().lineNumber);
+  return page.evaluate(() => window.__ide.editors.editor.getPosition()!.lineNumber);
 }
 
 /**

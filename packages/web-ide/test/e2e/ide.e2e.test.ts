@@ -10,6 +10,7 @@ import { join } from 'node:path';
 import { spawnSync } from 'node:child_process';
 import { startSession, openIde, shot, placeCursor, activeValue, activeTab, openFile, waitSaved, openAnotherTab, renameWithF2, type Session } from './harness.js';
 import type { Page } from 'playwright-core';
+import type {} from '../../src/app/ide-hook.js';
 
 let s: Session;
 const canGenerate = await import('@contract-studio/codegen').then((m) => typeof (m as Record<string, unknown>).generateArchitecture === 'function').catch(() => false);
@@ -59,7 +60,7 @@ describe('IDE in headless Chromium', () => {
     expect(names).toContain('action');
     expect(names).toContain('FIRST');
     await page.locator('.outline-row[data-name="RECEPTION"]').click();
-    const line = await page.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber);
+    const line = await page.evaluate(() => window.__ide.editors.editor.getPosition()!.lineNumber);
     expect((await activeValue(page)).split('\n')[line - 1]).toContain('RECEPTION');
     await shot(page, '01-outline-supervisor');
   });
@@ -89,7 +90,7 @@ describe('IDE in headless Chromium', () => {
     await placeCursor(page, 'MSC (consigne', 1);
     await page.keyboard.press('F12');
     await expect.poll(() => activeTab(page), { timeout: 5000 }).toBe('smodule3.contract');
-    const pos = await page.evaluate(() => (window as any).__ide.editors.editor.getPosition());
+    const pos = await page.evaluate(() => window.__ide.editors.editor.getPosition()!);
     expect((await activeValue(page)).split('\n')[pos.lineNumber - 1]).toContain('MSC');
   });
 
@@ -135,10 +136,10 @@ describe('IDE in headless Chromium', () => {
     // quick fix: a lower-case module name gets "upper-case" offered
     await openFile(page, 'amodule2.contract');
     await placeCursor(page, 'module MAB', 'module '.length);
-    const line = await page.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber);
+    const line = await page.evaluate(() => window.__ide.editors.editor.getPosition()!.lineNumber);
     await page.evaluate((line) => {
-      const ed = (window as any).__ide.editors.editor;
-      const model = ed.getModel();
+      const ed = window.__ide.editors.editor;
+      const model = ed.getModel()!;
       const text = model.getLineContent(line);
       const col = text.indexOf('MAB') + 1;
       ed.executeEdits('test', [{ range: { startLineNumber: line, startColumn: col, endLineNumber: line, endColumn: col + 3 }, text: 'mab' }]);
@@ -162,8 +163,8 @@ describe('IDE in headless Chromium', () => {
     await openFile(page, 'datatype.contract');
     const original = await activeValue(page);
     await page.evaluate(() => {
-      const ed = (window as any).__ide.editors.editor;
-      const m = ed.getModel();
+      const ed = window.__ide.editors.editor;
+      const m = ed.getModel()!;
       m.setValue(`${m.getValue()}datatype NavUse {NavigationAndPerceptionState s};\n`);
       ed.setPosition({ lineNumber: m.getLineCount() - 1, column: 'datatype NavUse {Nav'.length });
       ed.focus();
@@ -179,7 +180,7 @@ describe('IDE in headless Chromium', () => {
     await expect.poll(async () => {
       if (await longTitle.count()) return longTitle.textContent();
       if (Date.now() - pressed >= 4000) {
-        await page.evaluate(() => (window as any).__ide.editors.editor.focus());
+        await page.evaluate(() => window.__ide.editors.editor.focus());
         await page.keyboard.press('Control+.');
         pressed = Date.now();
       }
@@ -187,7 +188,7 @@ describe('IDE in headless Chromium', () => {
     }, { timeout: 30_000 }).toBe('Add import "shared/navigation-and-perception-types.contract"');
     await expect.poll(() => longTitle.evaluate((el) => el.scrollWidth <= el.clientWidth && el.clientWidth > 320), { timeout: 5000 }).toBe(true);
     await page.keyboard.press('Escape');
-    await page.evaluate((text) => (window as any).__ide.editors.editor.getModel().setValue(text), original);
+    await page.evaluate((text) => window.__ide.editors.editor.getModel()!.setValue(text), original);
     rmSync(join(s.workspace, 'shared'), { recursive: true, force: true });
     await openFile(page, 'amodule2.contract');
     // the right-click menu has the theme's colours (it is drawn in a shadow root beside the editor:
@@ -230,8 +231,8 @@ describe('IDE in headless Chromium', () => {
     await placeCursor(page, 'Pose p');
     await page.keyboard.press('F12');
     await expect.poll(() => activeTab(page), { timeout: 5000 }).toBe('extra_types.contract');
-    await page.evaluate(() => (window as any).__ide.editors.close('extra_types.contract'));
-    await page.evaluate(() => (window as any).__ide.editors.close('uses_pose.contract'));
+    await page.evaluate(() => window.__ide.editors.close('extra_types.contract'));
+    await page.evaluate(() => window.__ide.editors.close('uses_pose.contract'));
     await call(page, 'DELETE', 'uses_pose.contract');
     await call(page, 'DELETE', 'extra_types.contract');
     await expect.poll(() => page.locator('.tree-row[data-path="extra_types.contract"]').count(), { timeout: 5000 }).toBe(0);
@@ -261,11 +262,11 @@ describe('IDE in headless Chromium', () => {
     const path = 'src-gen/generated/architecture/modules/MSC_mod/module.c';
     await page.locator(`.gen-file[data-path="${path}"]`).click();
     await expect.poll(() => activeTab(page)).toBe(path);
-    expect(await page.evaluate(() => (window as any).__ide.editors.editor.getModel().getLanguageId())).toBe('c');
+    expect(await page.evaluate(() => window.__ide.editors.editor.getModel()!.getLanguageId())).toBe('c');
     expect(await page.locator('.gen-readonly').count()).toBeGreaterThan(0);
     // the outline lists the protected regions; clicking one puts the cursor inside it
     await page.locator('.outline-row[data-name="protect_init_MSC"]').click();
-    const initLine = await page.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber);
+    const initLine = await page.evaluate(() => window.__ide.editors.editor.getPosition()!.lineNumber);
     expect((await activeValue(page)).split('\n')[initLine - 1]).toContain('protect_init_MSC');
     await shot(page, '03-generated-module-c');
 
@@ -290,7 +291,7 @@ describe('IDE in headless Chromium', () => {
     expect(saved.replace(/\n[ \t]*\/\* user code kept \*\//, '')).toBe(before);
     // a model change regenerates module.c: the open tab reloads it, user code kept, nothing reverted
     writeFileSync(join(s.workspace, 'smodule3.contract'), disk('smodule3.contract').replace('{2.1,6.98,5.34}', '{2.5,6.98,5.34}'));
-    await expect.poll(() => page.evaluate(() => (window as any).__ide.workspace.files.get('smodule3.contract').model.getValue()), { timeout: 5000 }).toContain('2.5,6.98');
+    await expect.poll(() => page.evaluate(() => window.__ide.workspace.files.get('smodule3.contract')!.model.getValue()), { timeout: 5000 }).toContain('2.5,6.98');
     await page.locator('#btn-generate').click();
     await expect.poll(() => activeValue(page), { timeout: 15_000 }).toMatch(/2\.5/);
     await page.waitForTimeout(800);
@@ -406,13 +407,13 @@ describe('IDE in headless Chromium', () => {
       return { first, texts: [...rowsEl.querySelectorAll('.log-text')].map((e) => e.textContent), top: vp.scrollTop, bottom: vp.scrollTop + vp.clientHeight, height: vp.scrollHeight };
     });
     const feed = (from: number, to: number, chunk: number) => page.evaluate(async ({ from, to, chunk }) => {
-      const build = (window as any).__ide.build;
+      const build = window.__ide.build;
       for (let i = from; i < to; i += chunk) {
         for (let j = i; j < Math.min(to, i + chunk); j++) build.append({ t: 0, step: 'run', source: j % 3 ? 'LOG' : 'ODD', stream: 'stdout', line: `line ${j}` });
         await new Promise((r) => requestAnimationFrame(() => setTimeout(r, 0)));
       }
     }, { from, to, chunk });
-    await page.evaluate(() => (window as any).__ide.build.store.clear());
+    await page.evaluate(() => window.__ide.build.store.clear());
     await page.locator('#follow-tail').check();
     // while lines stream in (37 a frame here), the view redraws at most every 100 ms, not each frame
     const redraws = await page.evaluate(() => {
@@ -456,7 +457,7 @@ describe('IDE in headless Chromium', () => {
       const x = await rows();
       return x.texts.at(-1) === 'line 3399' && x.texts.every((t, i) => t === `line ${x.first + i}`);
     }).toBe(true);
-    await page.evaluate(() => (window as any).__ide.build.store.clear());
+    await page.evaluate(() => window.__ide.build.store.clear());
   });
 
   it('draws the architecture of a schema with elkjs', async () => {
@@ -552,12 +553,12 @@ describe('IDE in headless Chromium', () => {
     await page.locator('.log-row[data-source="MSC"]').first().waitFor({ timeout: 30_000 });
     // the log's lines (the view builds only the rows it shows)
     const lines = (tab: Page = page) => tab.evaluate(() => {
-      const store = (window as any).__ide.build.store;
+      const store = window.__ide.build.store;
       const out: string[] = [];
-      for (let i = 0; i < store.visibleCount; i++) out.push(`${store.visibleAt(i).source}: ${store.visibleAt(i).line}`);
+      for (let i = 0; i < store.visibleCount; i++) out.push(`${store.visibleAt(i)!.source}: ${store.visibleAt(i)!.line}`);
       return out;
     });
-    const liveVersion = (tab: Page) => tab.evaluate(() => (window as any).__ide.monitor.lastLive?.version ?? 0);
+    const liveVersion = (tab: Page) => tab.evaluate(() => window.__ide.monitor.lastLive?.version ?? 0);
     const before = await lines();
     await page.reload();
     await page.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
@@ -776,11 +777,11 @@ describe('IDE in headless Chromium', () => {
     writeFileSync(join(s.workspace, linkPath), linkGood);
     await row.first().click();
     await expect.poll(() => activeTab(page)).toBe(path);
-    expect(await page.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber)).toBe(badLine);
+    expect(await page.evaluate(() => window.__ide.editors.editor.getPosition()!.lineNumber)).toBe(badLine);
     await shot(page, '06b-gcc-error');
     await expect.poll(() => page.evaluate((line) => {
-      const ide = (window as any).__ide;
-      return ide.monaco.editor.getModelMarkers({ owner: 'gcc', resource: ide.editors.editor.getModel().uri }).some((m: any) => m.startLineNumber === line && m.severity === 8);
+      const ide = window.__ide;
+      return ide.monaco.editor.getModelMarkers({ owner: 'gcc', resource: ide.editors.editor.getModel()!.uri }).some((m) => m.startLineNumber === line && m.severity === ide.monaco.MarkerSeverity.Error);
     }, badLine)).toBe(true);
     await expect.poll(() => page.locator('.view-line', { hasText: 'broken_by_test' }).count(), { timeout: 5000 }).toBe(1); // revealed on screen
     await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 30_000 }).toMatch(/failed/);
@@ -915,7 +916,7 @@ describe('IDE in headless Chromium', () => {
       await page.unroute(pattern);
     }
     // put the file back as it was
-    await page.evaluate(({ p, text }) => (window as any).__ide.workspace.files.get(p).model.setValue(text), { p: path, text: original });
+    await page.evaluate(({ p, text }) => window.__ide.workspace.files.get(p)!.model.setValue(text), { p: path, text: original });
     await expect.poll(() => disk(path), { timeout: 5000 }).toBe(original);
   });
 
@@ -1059,7 +1060,7 @@ describe('New Project in an empty workspace', () => {
     await page.keyboard.press('Enter');
     await expect.poll(() => activeTab(page), { timeout: 5000 }).toBe('supervisor.contract');
     for (const f of ['datatype', 'module1', 'module2', 'sched', 'schema', 'supervisor']) expect(existsSync(join(e.workspace, `${f}.contract`))).toBe(true);
-    await page.waitForFunction(() => (window as any).__ide.lsp.workspaceBuilt().then(() => true));
+    await page.waitForFunction(() => window.__ide.lsp.workspaceBuilt().then(() => true));
     await page.waitForTimeout(500);
     expect(await page.locator('.problem-row').allTextContents()).toEqual([]);
     expect(await page.locator('.outline-row .sym-name').allTextContents()).toContain('MIS');

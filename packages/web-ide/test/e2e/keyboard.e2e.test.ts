@@ -8,6 +8,7 @@ import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { spawnSync } from 'node:child_process';
 import { startSession, openIde, shot, placeCursor, activeTab, openFile, waitSaved, cursorLine, type Session } from './harness.js';
 import { axeScan, seriousOf, type AxeSummary } from './axe.js';
+import type {} from '../../src/app/ide-hook.js';
 
 let s: Session;
 const canBuild = spawnSync('bwrap', ['--version']).status === 0;
@@ -177,7 +178,7 @@ describe('keyboard-first IDE', () => {
     await page.keyboard.press('Shift+Tab');
     await expect.poll(() => focusOf(page)).toBe('editor');
     await page.keyboard.press('Control+m'); // back to Tab indenting: the text gets it
-    const text = () => page.evaluate(() => (window as unknown as { __ide: { editors: { editor: { getModel(): { getValue(): string } } } } }).__ide.editors.editor.getModel().getValue());
+    const text = () => page.evaluate(() => window.__ide.editors.editor.getModel()!.getValue());
     const before = await text();
     await page.keyboard.press('Tab');
     await expect.poll(text).not.toBe(before);
@@ -328,9 +329,9 @@ describe('keyboard-first IDE', () => {
     expect(await focusOf(page)).toBe('editor');
     const amoduleCursor = await page.locator('#status-cursor').textContent();
     expect(amoduleCursor).not.toBe(schedCursor);
-    expect(amoduleCursor).toBe(`Ln ${await cursorLine(page)}, Col ${await page.evaluate(() => (window as unknown as { __ide: { editors: { editor: { getPosition(): { column: number } } } } }).__ide.editors.editor.getPosition().column)}`);
+    expect(amoduleCursor).toBe(`Ln ${await cursorLine(page)}, Col ${await page.evaluate(() => window.__ide.editors.editor.getPosition()!.column)}`);
     await page.keyboard.press('Control+z');
-    await expect.poll(() => page.evaluate(() => (window as unknown as { __ide: { editors: { editor: { getModel(): { getValue(): string } } } } }).__ide.editors.editor.getModel().getValue().includes('/*kb*/'))).toBe(false);
+    await expect.poll(() => page.evaluate(() => window.__ide.editors.editor.getModel()!.getValue().includes('/*kb*/'))).toBe(false);
     await waitSaved(page);
     // many tabs: the active one is always visible in the strip
     for (const f of ['amodule2.contract', 'aschema1.contract', 'datatype.contract', 'smodule1.contract', 'smodule2.contract', 'smodule4.contract', 'sschema1.contract', 'supervisor2.contract']) {

@@ -6,6 +6,7 @@
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { startSession, openIde, placeCursor, activeValue, openFile, waitSaved, shot, type Session } from './harness.js';
+import type {} from '../../src/app/ide-hook.js';
 
 let s: Session;
 
@@ -40,8 +41,8 @@ describe('language server feedback in the IDE', () => {
     const at = before.search(/\]\s*\n/);
     expect(at).toBeGreaterThan(0);
     await page.evaluate((offset) => {
-      const ed = (window as any).__ide.editors.editor;
-      const pos = ed.getModel().getPositionAt(offset + 1);
+      const ed = window.__ide.editors.editor;
+      const pos = ed.getModel()!.getPositionAt(offset + 1);
       ed.setPosition(pos);
       ed.focus();
     }, at);
@@ -51,7 +52,7 @@ describe('language server feedback in the IDE', () => {
     const labels = await page.locator('.suggest-widget .monaco-list-row .label-name').allTextContents();
     expect(labels).toEqual(expect.arrayContaining(['activate schema', 'activate supervisor', 'notify'])); // the list renders only its visible rows
     await page.keyboard.press('Escape');
-    await page.evaluate((text) => (window as any).__ide.editors.editor.getModel().setValue(text), before);
+    await page.evaluate((text) => window.__ide.editors.editor.getModel()!.setValue(text), before);
     await waitSaved(page);
   });
 
@@ -96,7 +97,7 @@ describe('language server feedback in the IDE', () => {
     await page.keyboard.press('Control+Space');
     await expect.poll(async () => (await shown()).map((r) => r.label), { timeout: 10_000 }).toEqual(['RECEPTION']);
     await page.keyboard.press('Escape');
-    await page.evaluate((text) => (window as any).__ide.editors.editor.getModel().setValue(text), before);
+    await page.evaluate((text) => window.__ide.editors.editor.getModel()!.setValue(text), before);
     await waitSaved(page);
   });
 
@@ -113,7 +114,7 @@ describe('language server feedback in the IDE', () => {
     }
     await page.keyboard.press('Enter');
     expect(await activeValue(page)).toContain('// the server was down async \nsynchronous module MSD');
-    await page.evaluate((text) => (window as any).__ide.editors.editor.getModel().setValue(text), before);
+    await page.evaluate((text) => window.__ide.editors.editor.getModel()!.setValue(text), before);
     await waitSaved(page);
   });
 

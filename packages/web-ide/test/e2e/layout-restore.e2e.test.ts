@@ -6,6 +6,7 @@
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { startSession, openIde, shot, placeCursor, openFile, type Session } from './harness.js';
+import type {} from '../../src/app/ide-hook.js';
 
 let s: Session;
 const FILES = ['sched.contract', 'smodule1.contract', 'smodule2.contract', 'smodule3.contract', 'sschema1.contract', 'sschema2.contract', 'datatype.contract'];
@@ -21,11 +22,11 @@ async function snapshot(): Promise<Snapshot> {
   const { page } = s;
   const tabs = await page.locator('.tabs .tab').evaluateAll((els) => els.map((e) => e.getAttribute('data-path')!));
   const active = await page.locator('.tab.active').getAttribute('data-path');
-  const scrollTop = await page.evaluate(() => (window as any).__ide.editors.editor.getScrollTop());
+  const scrollTop = await page.evaluate(() => window.__ide.editors.editor.getScrollTop());
   const cursors: Snapshot['cursors'] = {};
   for (const t of tabs.filter((id) => !id.startsWith('view:'))) {
     await page.locator(`.tabs .tab[data-path="${t}"]`).click();
-    cursors[t] = await page.evaluate(() => { const p = (window as any).__ide.editors.editor.getPosition(); return { lineNumber: p.lineNumber, column: p.column }; });
+    cursors[t] = await page.evaluate(() => { const p = window.__ide.editors.editor.getPosition()!; return { lineNumber: p.lineNumber, column: p.column }; });
   }
   if (active) await page.locator(`.tabs .tab[data-path="${active}"]`).click();
   const box = async (sel: string, dim: 'width' | 'height') => Math.round((await page.locator(sel).boundingBox())![dim]);
@@ -80,7 +81,7 @@ describe('reload keeps the workspace', () => {
     await page.locator('.panel-tab[data-panel=generate]').click();
     await page.locator('.tabs .tab[data-path="supervisor.contract"]').click();
     await placeCursor(page, 'RECEPTION', 3);
-    await page.evaluate(() => (window as any).__ide.editors.editor.setScrollTop(200));
+    await page.evaluate(() => window.__ide.editors.editor.setScrollTop(200));
     const before = await snapshot();
     expect(before.tabs.length).toBe(FILES.length + 3); // + supervisor.contract opened at start, + the architecture and timeline views
     expect(before.tabs).toContain('view:architecture');
@@ -123,7 +124,7 @@ describe('reload keeps the workspace', () => {
 
   it('a file deleted since is skipped, and corrupt stored JSON is ignored, with no error', async () => {
     const { page } = s;
-    const key = await page.evaluate(() => `contract-studio:layout:${(window as any).__ide.workspace.root}`);
+    const key = await page.evaluate(() => `contract-studio:layout:${window.__ide.workspace.root}`);
     const errors: string[] = [];
     page.on('pageerror', (e) => errors.push(e.message));
     await page.evaluate((k) => {

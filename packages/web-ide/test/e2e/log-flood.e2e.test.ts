@@ -18,6 +18,7 @@ import { spawnSync } from 'node:child_process';
 import type { WebSocket as PageSocket } from 'playwright-core';
 import { startSession, openIde, shot, type Session } from './harness.js';
 import { floodProject } from '../../bench/flood-project.mjs';
+import type {} from '../../src/app/ide-hook.js';
 
 const canBuild =
   (await import('@contract-studio/build-service').then((m) => typeof (m as Record<string, unknown>).createBuildServer === 'function').catch(() => false)) &&
@@ -70,7 +71,7 @@ describe.skipIf(!canBuild)('a module flooding its output, watched in the IDE', (
     await shot(page, 'log-flood');
     expect(await page.locator('#status-job').getAttribute('data-status')).toBe('succeeded');
     const got = await page.evaluate(() => {
-      const store = (window as unknown as { __ide: { build: { store: { visibleCount: number; visibleAt(n: number): { source: string; line: string } | undefined } } } }).__ide.build.store;
+      const store = window.__ide.build.store;
       const flood: number[] = [];
       let done = '';
       for (let i = 0; i < store.visibleCount; i++) {
@@ -99,7 +100,7 @@ describe.skipIf(!canBuild)('a module flooding its output, watched in the IDE', (
     expect(await marker.isVisible()).toBe(false);
     // 230,000 more lines into the panel that shows the flood's job: past its 200,000 and a quarter more
     const dropped = await page.evaluate(() => {
-      const build = (window as unknown as { __ide: { build: { append(l: unknown): void; store: { dropped: number } } } }).__ide.build;
+      const build = window.__ide.build;
       for (let i = 0; i < 230_000; i++) build.append({ t: Date.now(), step: 'run', source: 'MSB', stream: 'stdout', line: `more ${i}` });
       return build.store.dropped;
     });

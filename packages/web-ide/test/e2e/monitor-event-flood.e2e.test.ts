@@ -14,6 +14,7 @@ import { fileURLToPath } from 'node:url';
 import { WebSocketServer } from 'ws';
 import { encodeTraceRecords, parseTrace, renderStory } from '@contract-studio/build-service/trace';
 import { startSession, openIde, shot, type Session } from './harness.js';
+import type {} from '../../src/app/ide-hook.js';
 
 const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/event-flood-run', import.meta.url));
 const FILES = readdirSync(FIXTURE).filter((n) => n.endsWith('.csv')).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') }));
@@ -72,7 +73,7 @@ describe('Monitor: an event flood\'s waits for room, every streak counted', () =
       ws.send(JSON.stringify({ type: 'trace', seq: 1, t: Date.now(), ...encodeTraceRecords(LINES.slice(0, streaks[0]! + 1)) }));
     });
     try {
-      await page.evaluate((url) => (window as any).__ide.monitor.followLive('flood', url), `ws://127.0.0.1:${TRACE_PORT}/api/jobs/flood/ws?trace=only`);
+      await page.evaluate((url) => window.__ide.monitor.followLive('flood', url), `ws://127.0.0.1:${TRACE_PORT}/api/jobs/flood/ws?trace=only`);
       await expect.poll(() => rowText(page)).toMatch(/ · ⚠ waited for room 5 times \(1\.127 s in all, up to 244\.19 ms\)$/);
       expect(await row(page).getAttribute('title')).toMatch(/^PSH's events to BIN \(PSH:0 -> BIN:0\) waited for room 5 times \(1\.127 s in all, up to 244\.19 ms\): BIN takes its events slower than PSH posts them/);
       // the second streak: both counted (the old row kept telling the first alone)

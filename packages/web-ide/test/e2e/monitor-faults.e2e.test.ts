@@ -18,6 +18,7 @@ import { fileURLToPath } from 'node:url';
 import { WebSocketServer } from 'ws';
 import { encodeTraceRecords, parseTrace, renderStory } from '@contract-studio/build-service/trace';
 import { startSession, openIde, shot, type Session } from './harness.js';
+import type {} from '../../src/app/ide-hook.js';
 
 const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/crash-and-unheard-run', import.meta.url));
 const FILES = readdirSync(FIXTURE).filter((n) => n.endsWith('.csv')).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') }));
@@ -39,7 +40,7 @@ const crashed = (page: Page) => page.evaluate(() => {
 });
 const unheardRows = (page: Page) => page.locator('.monitor-flows .monitor-flow.unheard').allTextContents();
 const modules = (page: Page) => page.locator('.monitor-modules').textContent();
-const marksOf = (page: Page, kind: string) => page.evaluate((kind) => ((window as any).__ide.monitor.current?.marks as { t: number; kind: string; where: string; label: string }[] ?? [])
+const marksOf = (page: Page, kind: string) => page.evaluate((kind) => (window.__ide.monitor.current?.marks ?? [])
   .filter((m) => m.kind === kind).map((m) => `+${(m.t / 1e9).toFixed(6)}s ${m.where}: ${m.label}`), kind);
 
 describe('Monitor: an event no one received, a module that crashed', () => {
@@ -100,8 +101,8 @@ describe('Monitor: an event no one received, a module that crashed', () => {
     });
     const url = `ws://127.0.0.1:${(server.address() as { port: number }).port}/api/jobs/faults/ws?trace=only`;
     try {
-      await page.evaluate((url) => (window as any).__ide.monitor.followLive('faults', url), url);
-      await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(crash);
+      await page.evaluate((url) => window.__ide.monitor.followLive('faults', url), url);
+      await expect.poll(() => page.evaluate(() => window.__ide.monitor.current?.recordCount)).toBe(crash);
       await expect.poll(() => label(page)).toBe('Build & Run job faults · live');
       expect(await crashed(page)).toBeNull();
       await expect.poll(() => unheardRows(page)).toEqual(['┅ GCS:1 → no subscriber ×1 · no one received it · last +0.336166 s']);

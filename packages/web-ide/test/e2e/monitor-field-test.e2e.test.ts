@@ -24,6 +24,7 @@ import { WebSocketServer } from 'ws';
 import { encodeTraceRecords } from '@contract-studio/build-service/trace';
 import { startSession, openIde, shot, activeTab, openFile, type Session } from './harness.js';
 import { axeScan, seriousOf } from './axe.js';
+import type {} from '../../src/app/ide-hook.js';
 
 const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/tutorial-run', import.meta.url));
 /** The recorded tutorial run's record lines, in mono_ns order, numbered as in their logs. */
@@ -80,8 +81,8 @@ describe('Monitor field test', () => {
     });
     const url = `ws://127.0.0.1:${(server.address() as { port: number }).port}/api/jobs/late/ws?trace=only`;
     try {
-      await page.evaluate((url) => (window as any).__ide.monitor.followLive('late', url), url);
-      await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(kept);
+      await page.evaluate((url) => window.__ide.monitor.followLive('late', url), url);
+      await expect.poll(() => page.evaluate(() => window.__ide.monitor.current?.recordCount)).toBe(kept);
       expect(await label(page)).toBe('Build & Run job late · live'); // nothing tells of a gap yet
       for (const records of batches(kept + gone, LINES.length)) socket!.send(JSON.stringify({ type: 'trace', seq: keptEvents.length, t: Date.now(), ...encodeTraceRecords(records) }));
       // each log's lines that never came before one that did
@@ -100,9 +101,9 @@ describe('Monitor field test', () => {
       // the job's logs come (as run-controller.ts hands them over): the whole run is shown from them,
       // and the run as streamed says how much of it came (it was never "the first N records")
       const files = readdirSync(FIXTURE).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') }));
-      await page.evaluate((files) => (window as any).__ide.monitor.showRecorded('late', { label: 'Build & Run job late', files, problems: [] }), files);
+      await page.evaluate((files) => window.__ide.monitor.showRecorded('late', { label: 'Build & Run job late', files, problems: [] }), files);
       await expect.poll(() => label(page)).toBe('Build & Run job late · CSV logs');
-      expect(await page.evaluate(() => (window as any).__ide.monitor.current.recordCount)).toBe(LINES.length);
+      expect(await page.evaluate(() => window.__ide.monitor.current!.recordCount)).toBe(LINES.length);
       expect(await page.locator('.monitor-sources option[value="live:late"]').textContent())
         .toBe(`Build & Run job late · as streamed (${received.length} of the ${LINES.length} records of its logs: ${LINES.length - received.length} not received) · ended: succeeded`);
     } finally {
@@ -121,7 +122,7 @@ describe('Monitor field test', () => {
     await expect.poll(t).toBe(0);
     expect(await follow()).toBe('false');
     // ▶ Next: the next mark, as a click
-    const first = await page.evaluate(() => ((window as any).__ide.monitor.current.marks as { t: number }[]).find((m) => m.t > 0)!.t);
+    const first = await page.evaluate(() => (window.__ide.monitor.current!.marks).find((m) => m.t > 0)!.t);
     await page.locator('#monitor-next').focus();
     await page.keyboard.press('Space');
     await expect.poll(t).toBe(first);
@@ -180,10 +181,10 @@ describe('Monitor field test', () => {
 
   it('axe-core finds no serious violation while a rule is lit on a live run; the panel and a focused rule show a ring', async () => {
     const { page } = s;
-    await page.evaluate(() => (window as any).__ide.monitor.followLive('axe', null));
+    await page.evaluate(() => window.__ide.monitor.followLive('axe', null));
     await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode')).toBe('live');
     const upTo = LINES.findIndex((l) => l.text.includes('action.SECOND active'));
-    await page.evaluate((records) => (window as any).__ide.monitor.feed('axe', records), LINES.slice(0, upTo + 40));
+    await page.evaluate((records) => window.__ide.monitor.feed('axe', records), LINES.slice(0, upTo + 40));
     await expect.poll(() => rule(page, 'SUP.action.SECOND').getAttribute('data-active')).toBe('true');
     await expect.poll(() => page.locator('.monitor-rule[data-active=true] .rule-time').first().textContent()).toMatch(/^\+\d/);
     const scan = await axeScan(page, 'Monitor, live, a rule lit');
@@ -249,8 +250,8 @@ describe('Monitor field test', () => {
     }
     await page.setViewportSize({ width: 900, height: 700 });
     // the cursor where SECOND is lit with a long cause, schemaCommande1 released
-    const second = await page.evaluate(() => ((window as any).__ide.monitor.current.marks as { t: number; label: string }[]).find((m) => m.label.startsWith('action.SECOND active'))!.t);
-    await page.evaluate((t) => (window as any).__ide.monitor.panel.seek(t), second + 1.5e9);
+    const second = await page.evaluate(() => (window.__ide.monitor.current!.marks).find((m) => m.label.startsWith('action.SECOND active'))!.t);
+    await page.evaluate((t) => window.__ide.monitor.panel!.seek(t), second + 1.5e9);
     await expect.poll(() => rule(page, 'SUP.action.SECOND').getAttribute('data-active')).toBe('true');
     await page.locator('.monitor-pschema[data-periodic="schemaCommande1"] .monitor-hist').waitFor();
     const fits = await page.evaluate(() => {
@@ -280,7 +281,7 @@ describe('Monitor field test', () => {
   it('a live run\'s quiet stretch: the time runs with the run\'s clock, the state stays at the last record, nothing else redrawn; a deadline miss names what its cycle waited for', async () => {
     const { page } = s;
     await page.setViewportSize({ width: 1440, height: 900 });
-    await page.evaluate(() => (window as any).__ide.monitor.followLive('quiet', null));
+    await page.evaluate(() => window.__ide.monitor.followLive('quiet', null));
     await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode')).toBe('live');
     // the tutorial's run up to MSC's release in schemaCommande1's cycle 1 (PERIOD = CRITICAL_DELAY = 1s),
     // then ORD's deadline miss of that cycle (MSC not finished), then nothing: a quiet stretch
@@ -291,10 +292,10 @@ describe('Monitor field test', () => {
     const tick = /tick_ns=(\d+)/.exec(msc.text)![1];
     const miss = { file: msc.file, line: msc.line + 1, text: `${mono + 1000},2026-12-04T05:49:27.540500Z,ORD,ord_deadline_miss,,,0,schema=schemaCommande1 cycle=1 tick_ns=${tick}` };
     const records = [...LINES.slice(0, upTo + 1), miss];
-    await page.evaluate((records) => (window as any).__ide.monitor.feed('quiet', records), records);
-    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(records.length);
+    await page.evaluate((records) => window.__ide.monitor.feed('quiet', records), records);
+    await expect.poll(() => page.evaluate(() => window.__ide.monitor.current?.recordCount)).toBe(records.length);
     const label = 'deadline miss (ORD:0) cycle 1 (not finished: MSC)';
-    const marks = await page.evaluate(() => (window as any).__ide.monitor.current.marks as { t: number; kind: string; label: string }[]);
+    const marks = await page.evaluate(() => window.__ide.monitor.current!.marks);
     const mark = marks.find((m) => m.kind === 'miss')!;
     expect(mark.label).toBe(label);
     // the periodic block lists it; its tooltip says what the cycle waited for
@@ -302,10 +303,9 @@ describe('Monitor field test', () => {
     await expect.poll(() => missEl.getAttribute('title')).toBe(`${label} (click: the cursor goes there)`);
     // the quiet stretch: what is drawn after the last throttled parts caught up
     await page.waitForTimeout(600);
-    const end = await page.evaluate(() => (window as any).__ide.monitor.current.end as number);
+    const end = await page.evaluate(() => window.__ide.monitor.current!.end as number);
     const seen = await page.evaluate(async () => {
-      const w = window as any;
-      const counts = { time: 0, rest: 0, frames: w.__ide.monitor.panel.frameMs.length as number };
+      const counts = { time: 0, rest: 0, frames: window.__ide.monitor.panel!.frameMs.length };
       const texts: string[] = [];
       const time = document.querySelector('.monitor-time')!;
       new MutationObserver(() => (counts.time++, texts.push(time.textContent ?? ''))).observe(time, { subtree: true, childList: true, characterData: true });
@@ -313,7 +313,7 @@ describe('Monitor field test', () => {
         new MutationObserver(() => counts.rest++).observe(document.querySelector(sel)!, { subtree: true, childList: true, characterData: true, attributes: true });
       }
       await new Promise((r) => setTimeout(r, 1600));
-      counts.frames = w.__ide.monitor.panel.frameMs.length - counts.frames;
+      counts.frames = window.__ide.monitor.panel!.frameMs.length - counts.frames;
       return { ...counts, texts, t: document.querySelector('.monitor-view')!.getAttribute('data-t') };
     });
     console.log(`[monitor field test] quiet 1.6 s: the time written ${seen.time} times (${seen.texts.at(0)} … ${seen.texts.at(-1)}), ${seen.frames} frames drawn, other parts written ${seen.rest} times`);
@@ -344,7 +344,7 @@ describe('Monitor field test', () => {
     const { page } = s;
     await showRecorded(page);
     const files = readdirSync(FIXTURE).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') }));
-    await page.evaluate((files) => (window as any).__ide.monitor.showRecorded('elsewhere', { label: 'Build & Run job elsewhere', files, problems: [] }), files);
+    await page.evaluate((files) => window.__ide.monitor.showRecorded('elsewhere', { label: 'Build & Run job elsewhere', files, problems: [] }), files);
     await expect.poll(() => page.locator('.monitor-sources option').allTextContents()).toContain('Build & Run job elsewhere · CSV logs');
     expect(await label(page)).toBe('9 CSV log(s) in recorded');
   }, 60_000);
@@ -369,11 +369,11 @@ describe('Monitor field test', () => {
 
   it('Follow again after scrubbing back a live run: the first frame shows the live state, not the one scrubbed to', async () => {
     const { page } = s;
-    await page.evaluate(() => (window as any).__ide.monitor.followLive('scrub', null));
+    await page.evaluate(() => window.__ide.monitor.followLive('scrub', null));
     await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode')).toBe('live');
     const half = Math.floor(LINES.length / 2);
-    await page.evaluate((records) => (window as any).__ide.monitor.feed('scrub', records), LINES.slice(0, half));
-    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(half);
+    await page.evaluate((records) => window.__ide.monitor.feed('scrub', records), LINES.slice(0, half));
+    await expect.poll(() => page.evaluate(() => window.__ide.monitor.current?.recordCount)).toBe(half);
     const sup = page.locator('.monitor-sup[data-supervisor="SUP"] .monitor-sup-name');
     const liveText = async () => page.locator('.monitor-sup[data-supervisor="SUP"] .monitor-sup-name').textContent();
     await expect.poll(liveText).toMatch(/· [1-9]\d* action\(s\) done/);
@@ -383,16 +383,16 @@ describe('Monitor field test', () => {
     for (let i = 0; i < 3; i++) await page.keyboard.press(']');
     await page.keyboard.press('[');
     // the state at the mark comes from the worker: drawn in a frame after it answers
-    const mark = await page.evaluate(() => (window as any).__ide.monitor.panel.time as number);
+    const mark = await page.evaluate(() => window.__ide.monitor.panel!.time as number);
     await expect.poll(() => page.locator('.monitor-view').getAttribute('data-t')).toBe(String(Math.round(mark)));
     const scrubbed = await sup.textContent();
     // the run goes on meanwhile
-    await page.evaluate((records) => (window as any).__ide.monitor.feed('scrub', records), LINES.slice(half));
-    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(LINES.length);
+    await page.evaluate((records) => window.__ide.monitor.feed('scrub', records), LINES.slice(half));
+    await expect.poll(() => page.evaluate(() => window.__ide.monitor.current?.recordCount)).toBe(LINES.length);
     await page.waitForTimeout(500);
     expect(await sup.textContent()).toBe(scrubbed);
     await page.keyboard.press(' '); // follow
-    const end = await page.evaluate(() => (window as any).__ide.monitor.current.end as number);
+    const end = await page.evaluate(() => window.__ide.monitor.current!.end as number);
     await expect.poll(() => page.locator('.monitor-view').getAttribute('data-t'), { timeout: 1000 }).toBe(String(Math.round(end)));
     await expect.poll(liveText, { timeout: 300 }).not.toBe(scrubbed);
     expect(await sup.textContent()).toMatch(/· [1-9]\d* action\(s\) done/);
@@ -403,7 +403,7 @@ describe('Monitor field test', () => {
     await page.setViewportSize({ width: 1280, height: 800 });
     await page.getByRole('tab', { name: /build & run/i }).click();
     const message = `run finished with 1 problem(s): ${'the run\'s stdout went past the output limit (1 MiB per stream) '.repeat(8)}`;
-    await page.evaluate((m) => (window as any).__ide.build.setStatus('failed', m, false), message);
+    await page.evaluate((m) => window.__ide.build.setStatus('failed', m, false), message);
     const status = page.locator('.build-panel .job-status');
     await expect.poll(() => status.getAttribute('title')).toBe(`failed — ${message}`);
     const width = page.viewportSize()!.width;

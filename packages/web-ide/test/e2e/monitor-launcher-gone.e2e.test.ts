@@ -10,6 +10,7 @@ import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { spawnSync } from 'node:child_process';
 import { modulePid } from '@contract-studio/build-service/test-support/module-pid';
 import { startSession, openIde, openFile, shot, type Session } from './harness.js';
+import type {} from '../../src/app/ide-hook.js';
 
 const canBuild = spawnSync('bwrap', ['--version']).status === 0;
 /** One of the ports this test may use (E2E_LAUNCHER_GONE_PORT to choose another). */
@@ -34,7 +35,7 @@ describe.skipIf(!canBuild)('a module SIGKILLed mid-run, followed live', () => {
     await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode'), { timeout: 10_000 }).toBe('live');
     const status = () => page.locator('#status-job').getAttribute('data-status');
     // the run has started and the Monitor follows it: MAB's start record was read (its pid: the one the launcher's line names)
-    const started = () => page.evaluate((m) => (window as any).__ide.monitor.current?.live?.modules?.get(m)?.alive === true, MODULE);
+    const started = () => page.evaluate((m) => window.__ide.monitor.current?.live?.modules?.get(m)?.alive === true, MODULE);
     await expect.poll(started, { timeout: 240_000 }).toBe(true);
     let pid: number | undefined;
     await expect.poll(() => (pid = modulePid(MODULE)), { timeout: 20_000 }).toBeDefined();
@@ -49,7 +50,7 @@ describe.skipIf(!canBuild)('a module SIGKILLed mid-run, followed live', () => {
     expect(await status()).toBe('running');
     // (the modules' line is redrawn at most a few times a second, the alert at once)
     await expect.poll(() => page.locator('.monitor-modules').textContent(), { timeout: 5000 }).toMatch(new RegExp(`· gone: ${MODULE}$`));
-    const marks = await page.evaluate(() => ((window as any).__ide.monitor.current?.marks ?? []).filter((m: { kind: string }) => m.kind === 'crash').map((m: { where: string; label: string }) => `${m.where} ${m.label}`));
+    const marks = await page.evaluate(() => (window.__ide.monitor.current?.marks ?? []).filter((m: { kind: string }) => m.kind === 'crash').map((m: { where: string; label: string }) => `${m.where} ${m.label}`));
     expect(marks).toEqual([expect.stringMatching(new RegExp(`^${MODULE} ${MODULE} gone: contract-launch: module ${MODULE} \\(pid \\d+\\) died by signal 9 \\(Killed\\)$`))]);
     console.log(`launcher-gone: ${MODULE} shown gone ${shownAfterMs} ms after its SIGKILL, the job still running`);
     await shot(page, 'monitor-launcher-gone');
@@ -61,7 +62,7 @@ describe.skipIf(!canBuild)('a module SIGKILLed mid-run, followed live', () => {
     await page.locator('.monitor-sources').selectOption(await jobOption.getAttribute('value'));
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 }).toMatch(/· CSV logs/);
     const replayed = () => page.evaluate((m): { gone: string | undefined; marks: Array<{ t: number; where: string }>; end: number | undefined } => {
-      const run = (window as any).__ide.monitor.current;
+      const run = window.__ide.monitor.current;
       return { gone: run?.stateAt(run.end)?.modules?.get(m)?.gone, marks: (run?.marks ?? []).filter((k: { kind: string }) => k.kind === 'crash').map((k: { t: number; where: string }) => ({ t: k.t, where: k.where })), end: run?.end };
     }, MODULE);
     await expect.poll(async () => (await replayed()).gone, { timeout: 20_000 }).toMatch(new RegExp(`^gone: contract-launch: module ${MODULE} \\(pid \\d+\\) died by signal 9 \\(Killed\\)$`));

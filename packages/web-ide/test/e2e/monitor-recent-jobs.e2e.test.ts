@@ -10,6 +10,7 @@ import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { spawnSync } from 'node:child_process';
 import type { Page } from 'playwright-core';
 import { startSession, openIde, shot, type Session } from './harness.js';
+import type {} from '../../src/app/ide-hook.js';
 
 const canBuild =
   (await import('@contract-studio/build-service').then((m) => typeof (m as Record<string, unknown>).createBuildServer === 'function').catch(() => false)) &&
@@ -19,7 +20,7 @@ const IDE_PORT = 8001;
 
 let s: Session;
 
-const shownRecords = (page: Page) => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount as number | undefined);
+const shownRecords = (page: Page) => page.evaluate(() => window.__ide.monitor.current?.recordCount as number | undefined);
 const label = (page: Page) => page.locator('.monitor-source').textContent();
 
 describe.skipIf(!canBuild)("Monitor: a Build & Run job of a closed tab, from another tab's run list", () => {

@@ -10,6 +10,7 @@ import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { startSession, openIde, shot, type Session } from './harness.js';
+import type {} from '../../src/app/ide-hook.js';
 
 /** One of the ports this test may use (E2E_TRACE_FILE_GONE_PORT to choose another). */
 const PORT = Number(process.env.E2E_TRACE_FILE_GONE_PORT ?? 8011);
@@ -44,7 +45,7 @@ describe('a trace file with the launcher\'s end lines, replayed', () => {
     await page.locator('.monitor-sources').selectOption('file:killed.jsonl');
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 10_000 }).toBe('Trace file killed.jsonl · 5 record(s)');
     const state = () => page.evaluate(() => {
-      const run = (window as any).__ide.monitor.current;
+      const run = window.__ide.monitor.current;
       const end = run?.stateAt(run.end)?.modules;
       return { srt: end?.get('SRT')?.gone, ord: end?.get('ORD')?.gone ?? null, marks: (run?.marks ?? []).filter((k: { kind: string }) => k.kind === 'crash').map((k: { t: number; where: string }) => ({ t: k.t, where: k.where })) };
     });

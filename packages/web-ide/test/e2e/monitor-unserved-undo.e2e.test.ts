@@ -15,6 +15,7 @@ import { fileURLToPath } from 'node:url';
 import { WebSocketServer } from 'ws';
 import { encodeTraceRecords, parseTrace, renderStory } from '@contract-studio/build-service/trace';
 import { startSession, openIde, shot, type Session } from './harness.js';
+import type {} from '../../src/app/ide-hook.js';
 
 const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/killed-ord-run', import.meta.url));
 const FILES = readdirSync(FIXTURE).filter((n) => n.endsWith('.csv')).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') }));
@@ -26,7 +27,7 @@ const TOLD = renderStory(parseTrace(FILES)).find((l) => l.includes('no answer to
 type Page = Session['page'];
 const label = (page: Page) => page.locator('.monitor-source').textContent();
 const markSaid = (page: Page) => page.evaluate(() => document.querySelector('.monitor-mark-said[role=status][aria-live=polite]')?.textContent ?? null);
-const unservedMarks = (page: Page) => page.evaluate(() => ((window as any).__ide.monitor.current?.marks as { where: string; label: string }[] ?? [])
+const unservedMarks = (page: Page) => page.evaluate(() => (window.__ide.monitor.current?.marks ?? [])
   .filter((m) => m.label.includes('no answer to SUP\'s undo')).map((m) => `${m.where}: ${m.label}`));
 
 describe('Monitor: an undo ORD never served', () => {
@@ -69,8 +70,8 @@ describe('Monitor: an undo ORD never served', () => {
     });
     const url = `ws://127.0.0.1:${(server.address() as { port: number }).port}/api/jobs/undo/ws?trace=only`;
     try {
-      await page.evaluate((url) => (window as any).__ide.monitor.followLive('undo', url), url);
-      await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(LINES.length);
+      await page.evaluate((url) => window.__ide.monitor.followLive('undo', url), url);
+      await expect.poll(() => page.evaluate(() => window.__ide.monitor.current?.recordCount)).toBe(LINES.length);
       await expect.poll(() => label(page)).toBe('Build & Run job undo · live');
       // every record in, SUP's exit after its undo among them, the job still going: no undo said unserved
       await page.waitForTimeout(300);

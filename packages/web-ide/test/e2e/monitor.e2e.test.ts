@@ -14,6 +14,7 @@ import { WebSocketServer } from 'ws';
 import { encodeTraceRecords, parseTrace } from '@contract-studio/build-service/trace';
 import { startSession, openIde, shot, openFile, activeTab, activeValue, MOBILE_ROBOT, TUTORIAL, type Session } from './harness.js';
 import { activationsFromLogs } from '../../src/views/run-logs.js';
+import type {} from '../../src/app/ide-hook.js';
 
 const canBuild =
   (await import('@contract-studio/build-service').then((m) => typeof (m as Record<string, unknown>).createBuildServer === 'function').catch(() => false)) &&
@@ -27,7 +28,7 @@ const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/tutorial-run',
 
 type Page = Session['page'];
 interface MarkJson { t: number; kind: string; where: string; label: string }
-const marksOf = (page: Page) => page.evaluate(() => ((window as any).__ide.monitor.current?.marks ?? []) as MarkJson[]);
+const marksOf = (page: Page) => page.evaluate(() => (window.__ide.monitor.current?.marks ?? []) as MarkJson[]);
 const rule = (page: Page, id: string) => page.locator(`.monitor-rule[data-rule="${id}"]`);
 const periodic = (page: Page, name: string) => page.locator(`.monitor-pschema[data-periodic="${name}"]`);
 /** What the panel says (a polite live region: null without one) of the mark ◀ / ▶ ([ / ]) jumped to: the strip's tooltip's words for the marks at `t`. */
@@ -61,7 +62,7 @@ async function monitorShown(page: Page): Promise<void> {
 
 /** Moves the cursor to t (ns since the start) the way the panel's own controls do. */
 async function seek(page: Page, t: number): Promise<void> {
-  await page.evaluate((t) => (window as any).__ide.monitor.panel.seek(t), t);
+  await page.evaluate((t) => window.__ide.monitor.panel!.seek(t), t);
   await expect.poll(() => page.locator('.monitor-view').getAttribute('data-t')).toBe(String(Math.round(t)));
 }
 
@@ -145,14 +146,14 @@ describe('Monitor in headless Chromium', () => {
     // the timeline strip: every mark is a tick of its kind's colour in its row (binned by pixel column)
     const strip = await page.evaluate(() => {
       const c = document.querySelector('.monitor-strip') as HTMLCanvasElement;
-      const m = (window as any).__ide.monitor.current;
+      const m = window.__ide.monitor.current!;
       const d = c.getContext('2d')!.getImageData(0, 0, c.width, c.height).data;
       const px = (x: number, y: number) => { const i = (y * c.width + x) * 4; return `#${[d[i]!, d[i + 1]!, d[i + 2]!].map((v) => v.toString(16).padStart(2, '0')).join('')}`; };
       // (the strip's rows: timeline-strip.ts ROW)
       const row: Record<string, number> = { function: 0, user: 0, error: 0, unheard: 0, kept: 0, crash: 0, rule: 1, schema: 2, miss: 3, overrun: 3 };
       const col = (t: number) => Math.floor(1 + (t / Math.max(1, m.end)) * (c.width - 3));
       const cursor = col(0);
-      return (m.marks as { t: number; kind: string; on?: boolean }[]).filter((k) => Math.abs(col(k.t) - cursor) > 2).map((k) => ({ kind: k.kind, on: k.on, colour: px(col(k.t), 3 + row[k.kind]! * 10 + 4) }));
+      return m.marks.filter((k) => Math.abs(col(k.t) - cursor) > 2).map((k) => ({ kind: k.kind, on: k.on, colour: px(col(k.t), 3 + row[k.kind]! * 10 + 4) }));
     });
     expect(strip.length).toBeGreaterThan(3);
     for (const k of strip) expect(k.colour, JSON.stringify(k)).not.toBe('#20242c');
@@ -169,7 +170,7 @@ describe('Monitor in headless Chromium', () => {
     // a click on a rule opens its definition
     await rule(page, 'SUP.action.SECOND').click();
     await expect.poll(() => activeTab(page)).toBe('supervisor.contract');
-    const line = await page.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber);
+    const line = await page.evaluate(() => window.__ide.editors.editor.getPosition()!.lineNumber);
     expect((await activeValue(page)).split('\n')[line - 1]).toMatch(/^\s*SECOND:/);
     // renamed since the run (here on disk, as by another editor): the run's SECOND is marked as not
     // in the model, after the model's SECOND_X; a click opens its function and says why
@@ -182,7 +183,7 @@ describe('Monitor in headless Chromium', () => {
     expect(await rule(page, 'SUP.action.FIRST').getAttribute('data-in-model')).toBe('true');
     await rule(page, 'SUP.action.SECOND').click();
     await expect.poll(() => page.locator('.toast').allTextContents()).toContainEqual(expect.stringContaining('Rule SECOND is not in SUP.action any more'));
-    const fnLine = await page.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber);
+    const fnLine = await page.evaluate(() => window.__ide.editors.editor.getPosition()!.lineNumber);
     expect((await activeValue(page)).split('\n')[fnLine - 1]).toMatch(/^\s*action\(/);
     writeFileSync(supFile, supText);
     await expect.poll(() => rule(page, 'SUP.action.SECOND').getAttribute('data-in-model'), { timeout: 10_000 }).toBe('true');
@@ -275,33 +276,33 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 60_000 })
       .toBe('2 CSV log(s) in long-run (not whole: CTL_29-Nov-2026-10h00m00s.csv: only its first 217 bytes of 256.0 MiB read (the IDE reads 256.0 MiB of a log for a replay): ' +
         'its later records are not shown; the whole log is long-run/CTL_29-Nov-2026-10h00m00s.csv in the workspace (`contract trace` reads it whole))');
-    expect(await page.evaluate(() => (window as any).__ide.monitor.current.recordCount)).toBe(LONG_RUN_RELEASES + 1 + 2);
+    expect(await page.evaluate(() => window.__ide.monitor.current!.recordCount)).toBe(LONG_RUN_RELEASES + 1 + 2);
     await shot(page, 'monitor-02-replay-left-out');
     await page.locator('.monitor-view').focus();
     await page.keyboard.press('End');
     await expect.poll(() => periodic(page, 'S').getAttribute('data-releases')).toBe(String(LONG_RUN_RELEASES));
     // the replay's total bound (512 MiB: a folder of sparse 255 MiB logs must not fill the tab): a
     // log past what is left is not downloaded, and named (ORD's is read first: run-logs.ts replayOrder)
-    await page.evaluate(() => ((window as any).__ide.monitor.replayBytes = 1_000_000));
+    await page.evaluate(() => (window.__ide.monitor.replayBytes = 1_000_000));
     await page.locator('.monitor-sources').selectOption('dir:recorded');
-    await page.evaluate(() => (window as any).__ide.monitor.openFolder('long-run'));
+    await page.evaluate(() => window.__ide.monitor.openFolder('long-run'));
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 })
       .toMatch(/^0 of 2 CSV logs in long-run \(left out: ORD_29-Nov-2026-10h00m00s\.csv: \d+ bytes, past the 1000000 bytes left of the replay's bound; CTL_29-Nov-2026-10h00m00s\.csv: 268435456 bytes, past the \d+ bytes left of the replay's bound\) — `contract trace long-run` tells a run of any length$/);
     // a trace file past it: named, and the command that tells it whole
-    await page.evaluate(() => ((window as any).__ide.monitor.replayBytes = 1000));
-    await page.evaluate(() => (window as any).__ide.monitor.openTraceFile('recorded.jsonl'));
+    await page.evaluate(() => (window.__ide.monitor.replayBytes = 1000));
+    await page.evaluate(() => window.__ide.monitor.openTraceFile('recorded.jsonl'));
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 })
       .toMatch(/^Trace file recorded\.jsonl · 0 record\(s\) \(not whole: recorded\.jsonl: \d+ bytes, past the 1000 bytes left of the replay's bound\) — `contract trace recorded\.jsonl` tells a run of any length$/);
-    await page.evaluate(() => ((window as any).__ide.monitor.replayBytes = 512 * 1024 * 1024));
+    await page.evaluate(() => (window.__ide.monitor.replayBytes = 512 * 1024 * 1024));
   }, 60_000);
 
   it('replays a folder with a log of millions of lines that are no records: the rest of that log left out, said, the page responsive', async () => {
     const { page } = s;
-    await page.evaluate(() => (window as any).__ide.monitor.openFolder('junk-run'));
+    await page.evaluate(() => window.__ide.monitor.openFolder('junk-run'));
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 })
       .toBe('2 CSV log(s) in junk-run · 1,001 record(s), 100,000 unreadable line(s) (not whole: JNK_29-Nov-2026-10h00m00s.csv: more than 100000 lines that are not trace records, the rest of it from line 100001 left out)');
     // ORD's 1,001 records and the 100,000 unreadable lines kept: counted, the rest not read
-    const m = await page.evaluate(() => { const c = (window as any).__ide.monitor.current; return { n: c.recordCount, records: c.live.records, unknown: c.live.unknownLines }; });
+    const m = await page.evaluate(() => { const c = window.__ide.monitor.current!; return { n: c.recordCount, records: c.live.records, unknown: c.live.unknownLines }; });
     expect(m).toEqual({ n: 1001 + 100_000, records: 1001, unknown: 100_000 });
     await page.locator('.monitor-view').focus();
     await page.keyboard.press('End');
@@ -331,7 +332,7 @@ describe('Monitor in headless Chromium', () => {
     await page.locator('.monitor-sources').selectOption('dir:odd-run');
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 })
       .toBe('256 of 260 CSV logs in odd-run (left out: FIF_1.csv: a FIFO, not read; PWD_1.csv: a symbolic link, not read (logs are never read through a link); 2 more CSV log(s) past the first 256: a replay reads 256 at most) — `contract trace odd-run` tells a run of any length');
-    expect(await page.evaluate(() => (window as any).__ide.monitor.current.recordCount)).toBe(256);
+    expect(await page.evaluate(() => window.__ide.monitor.current!.recordCount)).toBe(256);
     expect(await page.evaluate(() => (window as any).__labels[0])).toBe('Reading the CSV logs in odd-run…');
     // a trace file: the lines that are no record counted (the first 20 named), as `contract trace` counts them
     const records = Array.from({ length: 500 }, (_, i) => JSON.stringify({ kind: 'module_started', monoNs: String(1000 + i), wallTime: 'w', module: 'ORD', peer: '', port: null, size: 0, detail: 'pid=1 priority=10' }));
@@ -346,7 +347,7 @@ describe('Monitor in headless Chromium', () => {
   it('a folder opened while another is still read and built: the last one asked for is shown, the other listed', async () => {
     const { page } = s;
     const shownAfter = await page.evaluate(async () => {
-      const m = (window as any).__ide.monitor;
+      const m = window.__ide.monitor;
       const before = m.runs.get('dir:long-run');
       // long-run (9.6 MB, 80,001 records) asked for first, the tutorial's small run right after
       const slow = m.openFolder('long-run');
@@ -371,7 +372,7 @@ describe('Monitor in headless Chromium', () => {
       if (batches.at(-1)?.at === at) batches.at(-1)!.records.push(l);
       else batches.push({ at, records: [l] });
     }
-    await page.evaluate(() => (window as any).__ide.monitor.followLive('fed', null)); // as Build & Run does, the lines fed by the test
+    await page.evaluate(() => window.__ide.monitor.followLive('fed', null)); // as Build & Run does, the lines fed by the test
     await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode')).toBe('live');
     // the live run drawn (its first frame: an empty run, followed), not the run shown before it
     await expect.poll(() => page.locator('.monitor-time').textContent()).toContain('· live');
@@ -380,7 +381,7 @@ describe('Monitor in headless Chromium', () => {
       for (const b of batches) {
         const wait = b.at - (performance.now() - t0);
         if (wait > 0) await new Promise((r) => setTimeout(r, wait));
-        (window as any).__ide.monitor.feed('fed', b.records);
+        window.__ide.monitor.feed('fed', b.records);
       }
     }, batches);
     // while it runs, following the end: FIRST lit (MAA's messages arrive), then SECOND after "disconnected"
@@ -393,18 +394,18 @@ describe('Monitor in headless Chromium', () => {
     await shot(page, 'monitor-02-live-fed-tutorial');
     await feeding;
     // every line folded in (by the live run's worker, off the page's main thread)
-    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current.recordCount)).toBe(lines.length);
+    await expect.poll(() => page.evaluate(() => window.__ide.monitor.current!.recordCount)).toBe(lines.length);
     const liveMarks = await marksOf(page);
     const { second } = await checkTutorialStory(page);
     // played back from just before SECOND: the states come from the live run's worker as the cursor moves
     await seek(page, second.t - 300e6);
     await expect.poll(() => rule(page, 'SUP.action.SECOND').getAttribute('data-active')).toBe('false');
-    const drawnBefore = await page.evaluate(() => (window as any).__ide.monitor.panel.frameMs.length);
+    const drawnBefore = await page.evaluate(() => window.__ide.monitor.panel!.frameMs.length);
     await page.locator('#monitor-play').click();
     await expect.poll(() => rule(page, 'SUP.action.SECOND').getAttribute('data-active'), { timeout: 5000 }).toBe('true');
     await page.locator('#monitor-play').click();
     // drawn along the way, not only at the end (a frame per state that came)
-    expect(await page.evaluate(() => (window as any).__ide.monitor.panel.frameMs.length) - drawnBefore).toBeGreaterThan(5);
+    expect(await page.evaluate(() => window.__ide.monitor.panel!.frameMs.length) - drawnBefore).toBeGreaterThan(5);
     await page.locator('.monitor-sources').selectOption('dir:recorded');
     await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
     expect(await marksOf(page)).toEqual(liveMarks);
@@ -412,14 +413,13 @@ describe('Monitor in headless Chromium', () => {
 
   it('following a 1 kHz run live, the time is written at most 10 times a second, the diagram\'s marks too, the deliveries\' counts 5 times, and exactly once it pauses or ends', async () => {
     const { page } = s;
-    await page.evaluate(() => (window as any).__ide.monitor.followLive('khz', null));
+    await page.evaluate(() => window.__ide.monitor.followLive('khz', null));
     await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode')).toBe('live');
     await page.waitForSelector('.monitor-view .arch-svg');
     // MAB receiving MAA's event at 1 kHz for 2 s (and MSA running every other 20 ms), in 20 ms
     // trace events at the run's own pace;
     // the deliveries' rows counted per write (one batch of mutations), against the frames drawn
     const seen = await page.evaluate(async () => {
-      const w = window as any;
       const counts = { writes: 0, clock: 0, diagram: 0, frames: 0 };
       const observers = [
         new MutationObserver(() => counts.writes++),
@@ -432,7 +432,7 @@ describe('Monitor in headless Chromium', () => {
       let version = -1;
       let feeding = true;
       const tick = () => {
-        const drawn = w.__ide.monitor.panel.drawn.version;
+        const drawn = window.__ide.monitor.panel!.drawn.version;
         if (drawn !== version) (version = drawn), counts.frames++;
         if (feeding) requestAnimationFrame(tick);
       };
@@ -446,7 +446,7 @@ describe('Monitor in headless Chromium', () => {
         }
         // MSA runs in one batch, stops in the next: the diagram's "running" mark changes with each
         records.push({ file: 'MSA.csv', line: batch + 2, text: `${1_000_000_000 + (batch * 20 + 19) * 1_000_000 + 500_000},2026-11-29T10:00:01.000000Z,MSA,${batch % 2 ? 'run_finished' : 'run_started'},ORD,,0,activation=${batch + 1}` });
-        w.__ide.monitor.feed('khz', records);
+        window.__ide.monitor.feed('khz', records);
         const wait = (batch + 1) * 20 - (performance.now() - t0);
         if (wait > 0) await new Promise((r) => setTimeout(r, wait));
       }
@@ -469,21 +469,20 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(async () => (await page.locator('.monitor-time').textContent())!.match(/\d+\.\d{6}/)![0]).toBe('1.999500');
     // paused right after a record came (a throttled part then waits): the view is exact at once
     const paused = await page.evaluate(async () => {
-      const w = window as any;
       const frame = () => new Promise((r) => requestAnimationFrame(r));
       const time = document.querySelector('.monitor-time')!;
       // just after the time was written, a record comes and its frame is drawn: the time waits
       const written = new Promise((r) => new MutationObserver((_, o) => (o.disconnect(), r(undefined))).observe(time, { subtree: true, childList: true, characterData: true }));
-      const m = w.__ide.monitor.lastLive;
+      const m = window.__ide.monitor.lastLive!;
       // the two records below are counted from here: the write awaited may be the clock's own tick, before the first is folded
       const before = m.recordCount;
-      w.__ide.monitor.feed('khz', [{ file: 'MAB.csv', line: 2002, text: '3500000000,2026-11-29T10:00:03.500000Z,MSA,run_finished,ORD,,0,activation=1000' }]);
+      window.__ide.monitor.feed('khz', [{ file: 'MAB.csv', line: 2002, text: '3500000000,2026-11-29T10:00:03.500000Z,MSA,run_finished,ORD,,0,activation=1000' }]);
       const wrote = await Promise.race([written.then(() => true), new Promise((r) => setTimeout(() => r(false), 2000))]);
       if (!wrote) return { time: `the time was not written: ${time.textContent}`, row: '' };
-      w.__ide.monitor.feed('khz', [{ file: 'MAB.csv', line: 2003, text: '4000000000,2026-11-29T10:00:04.000000Z,MAB,event_received,MAA,0,288,from_port=0 latency_ns=1000' }]);
+      window.__ide.monitor.feed('khz', [{ file: 'MAB.csv', line: 2003, text: '4000000000,2026-11-29T10:00:04.000000Z,MAB,event_received,MAA,0,288,from_port=0 latency_ns=1000' }]);
       // folded by the live run's worker: in the page's model at its next snapshot
       while (m.recordCount < before + 2) await frame();
-      w.__ide.monitor.panel.setFollow(false);
+      window.__ide.monitor.panel!.setFollow(false);
       await frame();
       return { time: time.textContent, row: document.querySelector('.monitor-flow.event[data-flow="MAA:0->MAB:0"]')!.textContent };
     });
@@ -495,13 +494,13 @@ describe('Monitor in headless Chromium', () => {
 
   it('a live run that ends stops saying live in the readout at once, not at the next frame (a large run\'s frame came seconds later while the run list said ended)', async () => {
     const { page } = s;
-    await page.evaluate(() => (window as any).__ide.monitor.followLive('ends', null));
+    await page.evaluate(() => window.__ide.monitor.followLive('ends', null));
     await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode')).toBe('live');
-    await page.evaluate(() => (window as any).__ide.monitor.feed('ends', [{ file: 'MAB.csv', line: 2, text: '1000000000,2026-11-29T10:00:01.000000Z,MAB,event_received,MAA,0,288,from_port=0 latency_ns=1000' }]));
+    await page.evaluate(() => window.__ide.monitor.feed('ends', [{ file: 'MAB.csv', line: 2, text: '1000000000,2026-11-29T10:00:01.000000Z,MAB,event_received,MAA,0,288,from_port=0 latency_ns=1000' }]));
     await expect.poll(() => page.locator('.monitor-time').textContent()).toMatch(/ · live \(last record \+\d+\.\d{6} s\)$/);
     // ended, then read in the same task: no frame has been drawn in between
     const readout = await page.evaluate(() => {
-      (window as any).__ide.monitor.panel.endLive('Build & Run job ends · ended: cancelled');
+      window.__ide.monitor.panel!.endLive('Build & Run job ends · ended: cancelled');
       return document.querySelector('.monitor-time')!.textContent;
     });
     expect(readout).not.toContain('live');
@@ -530,7 +529,7 @@ describe('Monitor in headless Chromium', () => {
     expect(await rule(page, 'SUP.action.toString').getAttribute('data-active')).toBe('true');
     // ORD's log ends with no exit record: its schema `__proto__` is shown ended at ORD's last record, with the mark that says so
     expect(await page.locator('.monitor-schema').allTextContents()).toEqual([]);
-    expect(await page.evaluate(() => ((window as any).__ide.monitor.current.marks as { kind: string; where: string; label: string }[])
+    expect(await page.evaluate(() => (window.__ide.monitor.current!.marks)
       .filter((m) => m.kind === 'schema' && m.label.startsWith('ORD gone')).map((m) => m.where))).toEqual(['__proto__']);
     expect(await page.evaluate(() => ({} as any).by ?? null)).toBeNull();
     const longRule = rule(page, 'SUP.action.OBSTACLE_AVOIDANCE_RECOVERY').locator('.rule-name');
@@ -551,11 +550,11 @@ describe('Monitor in headless Chromium', () => {
     // listed while the Monitor stays open (no close and reopen)
     await expect.poll(() => page.locator('.monitor-sources option[value="dir:growing-run"]').count(), { timeout: 10_000 }).toBe(1);
     await page.locator('.monitor-sources').selectOption('dir:growing-run');
-    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(1);
+    await expect.poll(() => page.evaluate(() => window.__ide.monitor.current?.recordCount)).toBe(1);
     // the run writes on: the shown folder is read again
     lines.push('2000000,w,SUP,sup_rule,,,0,action.FIRST active cause=elapsed=1000000ns');
     writeFileSync(join(dir, 'SUP_1-Jan-2026-00h00m00s.csv'), lines.join('\n') + '\n');
-    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount), { timeout: 15_000 }).toBe(2);
+    await expect.poll(() => page.evaluate(() => window.__ide.monitor.current?.recordCount), { timeout: 15_000 }).toBe(2);
     await expect.poll(() => rule(page, 'SUP.action.FIRST').getAttribute('data-active')).toBe('true');
     // a log added while another run is shown: read when the folder is picked again
     await page.locator('.monitor-sources').selectOption('dir:recorded');
@@ -565,7 +564,7 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(() => page.evaluate(() => (window as any).__ide.workspace.hasFile('growing-run/ORD_1-Jan-2026-00h00m00s.csv')), { timeout: 15_000 }).toBe(true);
     await page.locator('.monitor-sources').selectOption('dir:growing-run');
     await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('2 CSV log(s) in growing-run');
-    expect(await page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(3);
+    expect(await page.evaluate(() => window.__ide.monitor.current?.recordCount)).toBe(3);
   }, 60_000);
 
   it('a shown workspace log folder a run keeps writing is read again 1 s after a change, not only once the writes pause: the view catches up while they go on', async () => {
@@ -582,7 +581,7 @@ describe('Monitor in headless Chromium', () => {
     writeFileSync(sup, `${header}\n1000000,w,SUP,supervisor,,,0,function action started\n`);
     await expect.poll(() => page.locator('.monitor-sources option[value="dir:busy-run"]').count(), { timeout: 10_000 }).toBe(1);
     await page.locator('.monitor-sources').selectOption('dir:busy-run');
-    const records = () => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount as number | undefined);
+    const records = () => page.evaluate(() => window.__ide.monitor.current?.recordCount as number | undefined);
     await expect.poll(records, { timeout: 30_000 }).toBe(200_002);
     // the run writes a line every 0.3 s, without a pause of 1 s, for 20 s
     let n = 0;
@@ -787,7 +786,7 @@ describe('Monitor in headless Chromium', () => {
     const url = (job: string) => `ws://127.0.0.1:${(server.address() as { port: number }).port}/api/jobs/${job}/ws?trace=only`;
     try {
       for (const [job, outcome] of [['cancelled', 'cancelled'], ['failed', 'failed: run: MAA exited with status 3'], ['killed', 'connection to the build service lost']] as const) {
-        await page.evaluate(([job, url]) => (window as any).__ide.monitor.followLive(job, url), [job, url(job)]);
+        await page.evaluate(([job, url]) => window.__ide.monitor.followLive(job, url), [job, url(job)]);
         // (the lost stream also says, as before, that the trace is not whole)
         const label = `Build & Run job ${job} · ended: ${outcome}${job === 'killed' ? ' (trace not whole: lost the connection to the build service: the trace stops here (if the build service is still there when the job ends, the Monitor shows the run from its CSV logs))' : ''}`;
         await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 }).toBe(label);
@@ -800,7 +799,7 @@ describe('Monitor in headless Chromium', () => {
         await expect.poll(() => page.locator('.monitor-time').textContent()).toMatch(/^\+\d+\.\d{6} s \/ \+\d+\.\d{6} s$/);
         expect(await page.locator('#monitor-follow').textContent()).toBe('⇥ End');
         // what the stream brought is still shown: FIRST became active in those records
-        expect(await page.evaluate(() => (window as any).__ide.monitor.current.recordCount)).toBe(lines.length);
+        expect(await page.evaluate(() => window.__ide.monitor.current!.recordCount)).toBe(lines.length);
       }
       await shot(page, 'monitor-04-ended-job');
     } finally {
@@ -867,8 +866,8 @@ describe('Monitor in headless Chromium', () => {
       await shot(page, 'monitor-02b-live-tutorial-during-run');
     }
     await expect.poll(running, { timeout: 180_000 }).toBe('succeeded');
-    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.lastLive?.ended)).toBe(true); // its worker has folded the whole stream
-    const streamed = await page.evaluate(() => (window as any).__ide.monitor.lastLive?.recordCount ?? 0);
+    await expect.poll(() => page.evaluate(() => window.__ide.monitor.lastLive?.ended)).toBe(true); // its worker has folded the whole stream
+    const streamed = await page.evaluate(() => window.__ide.monitor.lastLive?.recordCount ?? 0);
     // the page's main thread got the job's log, status and end, and not one trace event: its worker took them
     const pageEvents = await page.evaluate(() => (window as any).__pageEvents as Record<string, number>);
     expect(pageEvents['line'] ?? 0).toBeGreaterThan(0);
@@ -911,7 +910,7 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
     const fixture = readdirSync(FIXTURE).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') }));
     for (let i = 0; i < 7; i++) {
-      await page.evaluate(({ id, files }) => (window as any).__ide.monitor.showRecorded(id, { label: id, files, problems: [] }), { id: `j-other-${i}`, files: fixture });
+      await page.evaluate(({ id, files }) => window.__ide.monitor.showRecorded(id, { label: id, files, problems: [] }), { id: `j-other-${i}`, files: fixture });
     }
     const option = (id: string) => page.locator(`.monitor-sources option[value="job:${id}"]`);
     await expect.poll(() => option(jobId).textContent()).toBe(`Build & Run job ${jobId} · CSV logs · read again when picked`);
@@ -1062,14 +1061,14 @@ describe('Monitor in a workspace of two projects', () => {
     await page.locator('.monitor-sources').selectOption('dir:tut/logs');
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toMatch(/ in tut\/logs$/);
     // the model's supervisors read (for the run shown): the tutorial's, not the active tab's project
-    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.symbols?.catalogue.size ?? 0), { timeout: 15_000 }).toBeGreaterThan(0);
-    expect(await page.evaluate(() => [...(window as any).__ide.monitor.symbols.catalogue.keys()].sort())).toEqual(['GLB', 'SUP']);
+    await expect.poll(() => page.evaluate(() => window.__ide.monitor.symbols?.catalogue.size ?? 0), { timeout: 15_000 }).toBeGreaterThan(0);
+    expect(await page.evaluate(() => [...window.__ide.monitor.symbols!.catalogue.keys()].sort())).toEqual(['GLB', 'SUP']);
     // SUP's rules are in its model (they were "not in the model", struck through), mobile-robot's MIS is not listed
     await expect.poll(() => page.locator('.monitor-sup[data-supervisor="SUP"] .monitor-sup-name').getAttribute('data-in-model'), { timeout: 15_000 }).toBe('true');
     await expect.poll(() => rule(page, 'SUP.action.FIRST').getAttribute('data-in-model')).toBe('true');
     expect(await page.locator('.monitor-sup[data-supervisor="MIS"]').count()).toBe(0);
     // the schemas the panel reads are the tutorial's, none of mobile-robot's
-    const schemas = await page.evaluate(async () => ((await (window as any).__ide.monitor.projectSchemas()) as { name: string }[]).map((x) => x.name).sort());
+    const schemas = await page.evaluate(async () => ((await window.__ide.monitor.projectSchemas()) as { name: string }[]).map((x) => x.name).sort());
     expect(schemas).toEqual(['schemaCommande1', 'schemaCommande2', 'schemaReceptionMessage']);
   }, 120_000);
 });

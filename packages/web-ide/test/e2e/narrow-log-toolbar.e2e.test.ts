@@ -6,6 +6,7 @@
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { openIde, shot, startSession, type Session } from './harness.js';
+import type {} from '../../src/app/ide-hook.js';
 
 describe('the Build & Run panel\'s toolbar, narrow', () => {
   let s: Session;
@@ -21,7 +22,7 @@ describe('the Build & Run panel\'s toolbar, narrow', () => {
     const { page } = s;
     await page.setViewportSize({ width: 1000, height: 700 });
     await page.evaluate(() => {
-      const b = (window as any).__ide.build;
+      const b = window.__ide.build;
       b.setOrigin('(Build & Run of another tab)');
       b.setStatus('running', 'run', true);
       for (const src of ['GLB', 'MAA', 'MAB', 'MSA', 'MSB', 'MSC', 'MSD', 'ORD', 'SUP', 'launcher']) b.append({ t: Date.now(), step: 'run', source: src, stream: 'stdout', line: `hello from ${src}` });

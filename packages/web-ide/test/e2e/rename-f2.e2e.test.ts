@@ -17,6 +17,7 @@ import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { existsSync, mkdirSync, readFileSync, readdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { startSession, openIde, renameWithF2, activeValue, waitSaved, shot, MOBILE_ROBOT, type Session } from './harness.js';
+import type {} from '../../src/app/ide-hook.js';
 
 const canGenerate = await import('@contract-studio/codegen').then((m) => typeof (m as Record<string, unknown>).generateArchitecture === 'function').catch(() => false);
 
@@ -60,7 +61,7 @@ describe('F2 renames in the IDE', () => {
     // every model the rename edited shows its text again, the open tab as the others
     await expect.poll(() => activeValue(page), { timeout: 10_000 }).toBe(before.get('odometry.contract'));
     for (const f of renamed) {
-      expect(await page.evaluate((p) => (window as any).__ide.workspace.files.get(p).model.getValue(), f)).toBe(before.get(f));
+      expect(await page.evaluate((p) => window.__ide.workspace.files.get(p)!.model.getValue(), f)).toBe(before.get(f));
     }
     await waitSaved(page);
     await page.waitForTimeout(1000); // past autosave's delay: a held save let go would have been written by now
@@ -84,7 +85,7 @@ describe('F2 renames in the IDE', () => {
     const { page } = s;
     const renamed = ['navigation.contract', 'drive.contract', 'localisation-loop.contract', 'scheduler.contract'];
     const before = new Map(renamed.map((f) => [f, disk(f)]));
-    const model = (p: string) => page.evaluate((path) => (window as any).__ide.workspace.files.get(path).model.getValue() as string, p);
+    const model = (p: string) => page.evaluate((path) => window.__ide.workspace.files.get(path)!.model.getValue() as string, p);
     // the server's answer held until the user typed in the renamed file, then a refusal
     let answer!: () => void;
     const typed = new Promise<void>((r) => (answer = r));

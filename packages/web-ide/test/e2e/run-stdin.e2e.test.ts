@@ -15,6 +15,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { spawnSync } from 'node:child_process';
 import { startSession, openIde, shot, TUTORIAL, type Session } from './harness.js';
+import type {} from '../../src/app/ide-hook.js';
 
 const canBuild =
   (await import('@contract-studio/build-service').then((m) => typeof (m as Record<string, unknown>).createBuildServer === 'function').catch(() => false)) &&
@@ -51,9 +52,9 @@ describe.skipIf(!canBuild)("a module's stdin from a file of the project, from th
 
   /** The Build & Run log's lines as `SOURCE: line`. */
   const lines = () => s.page.evaluate(() => {
-    const store = (window as unknown as { __ide: { build: { store: { visibleCount: number; visibleAt(n: number): { source: string; line: string } } } } }).__ide.build.store;
+    const store = window.__ide.build.store;
     const out: string[] = [];
-    for (let i = 0; i < store.visibleCount; i++) out.push(`${store.visibleAt(i).source}: ${store.visibleAt(i).line}`);
+    for (let i = 0; i < store.visibleCount; i++) out.push(`${store.visibleAt(i)!.source}: ${store.visibleAt(i)!.line}`);
     return out;
   });
   const jobStatus = () => s.page.locator('#status-job').getAttribute('data-status');

@@ -8,6 +8,7 @@
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { startSession, openIde, openFile, placeCursor, shot, type Session } from './harness.js';
+import type {} from '../../src/app/ide-hook.js';
 
 let s: Session;
 const FILE = 'scenarios/commutation.scenario';
@@ -16,9 +17,9 @@ type Marker = { code?: string | { value: string }; message: string; severity: nu
 
 /** Monaco's markers of the active tab set by the language server. */
 const markers = (page: Session['page']) => page.evaluate(() => {
-  const ide = (window as any).__ide;
-  const model = ide.editors.editor.getModel();
-  return ide.monaco.editor.getModelMarkers({ resource: model.uri, owner: 'cactal' }).map((m: any) => ({
+  const ide = window.__ide;
+  const model = ide.editors.editor.getModel()!;
+  return ide.monaco.editor.getModelMarkers({ resource: model.uri, owner: 'cactal' }).map((m) => ({
     code: typeof m.code === 'object' ? m.code.value : m.code, message: m.message, severity: m.severity,
     startLineNumber: m.startLineNumber, startColumn: m.startColumn, endColumn: m.endColumn,
   }));
@@ -26,8 +27,8 @@ const markers = (page: Session['page']) => page.evaluate(() => {
 
 /** Replaces the active editor's text as a user edit would (undo stack, autosave). */
 const setText = (page: Session['page'], text: string) => page.evaluate((t) => {
-  const ed = (window as any).__ide.editors.editor;
-  const model = ed.getModel();
+  const ed = window.__ide.editors.editor;
+  const model = ed.getModel()!;
   ed.executeEdits('test', [{ range: model.getFullModelRange(), text: t }]);
 }, text);
 
@@ -43,12 +44,12 @@ describe('.scenario files in the IDE (headless Chromium)', () => {
   it('opens a scenario with its language; the example has no marker', async () => {
     const { page } = s;
     await openFile(page, FILE);
-    expect(await page.evaluate(() => (window as any).__ide.editors.editor.getModel().getLanguageId())).toBe('cactal-scenario');
+    expect(await page.evaluate(() => window.__ide.editors.editor.getModel()!.getLanguageId())).toBe('cactal-scenario');
     // Colours from the Monarch grammar: directive, time, module, port, value, state, comment.
-    const types = await page.evaluate(() => (window as any).__ide.monaco.editor
+    const types = await page.evaluate(() => window.__ide.monaco.editor
       .tokenize('t=300ms MAA:2 "x"  # why', 'cactal-scenario')[0].map((t: { type: string }) => t.type.replace('.cactal-scenario', '')));
     expect(types).toEqual(['keyword', 'number.time', '', 'type.identifier.module', 'number.port', '', 'string', '', 'comment']);
-    const line = (text: string) => page.evaluate((t): Array<[string, string]> => (window as any).__ide.monaco.editor.tokenize(t, 'cactal-scenario')[0]
+    const line = (text: string) => page.evaluate((t): Array<[string, string]> => window.__ide.monaco.editor.tokenize(t, 'cactal-scenario')[0]
       .map((x: { offset: number; type: string }, i: number, all: Array<{ offset: number }>) => [t.slice(x.offset, all[i + 1]?.offset ?? t.length), x.type.replace('.cactal-scenario', '')]), text);
     expect(await line('scenario the title # note')).toEqual([['scenario', 'keyword'], [' the title ', 'string'], ['# note', 'comment']]);
     expect((await line('expect rule SUP.action.FIRST active')).filter(([, t]) => t === 'keyword' || t === 'constant'))
@@ -59,7 +60,7 @@ describe('.scenario files in the IDE (headless Chromium)', () => {
     // answered by the worker (~50 ms) but not always displayed by Monaco, in .contract tabs too; the next is.
     await expect.poll(async () => {
       const shown = (await page.locator('.monaco-hover-content').allTextContents()).join(' ');
-      if (!shown) await page.evaluate(() => (window as any).__ide.editors.editor.trigger('test', 'editor.action.showHover', {}));
+      if (!shown) await page.evaluate(() => window.__ide.editors.editor.trigger('test', 'editor.action.showHover', {}));
       return shown;
     }, { timeout: 10_000, interval: 500 }).toContain('out event port of MAA, type string');
     await page.keyboard.press('Escape');
@@ -68,7 +69,7 @@ describe('.scenario files in the IDE (headless Chromium)', () => {
 
   it('marks an unknown port with its code, on the port number, and lists it in the problems panel', async () => {
     const { page } = s;
-    const text = await page.evaluate(() => (window as any).__ide.editors.editor.getModel().getValue()) as string;
+    const text = await page.evaluate(() => window.__ide.editors.editor.getModel()!.getValue()) as string;
     const broken = text.replace('t=300ms MAA:2 connection_status = "disconnected"', 't=300ms MAA:7 "disconnected"');
     expect(broken).not.toBe(text);
     await setText(page, broken);
@@ -86,7 +87,7 @@ describe('.scenario files in the IDE (headless Chromium)', () => {
 
   it('completes the rules of SUP.action after `expect rule SUP.action.`', async () => {
     const { page } = s;
-    const text = await page.evaluate(() => (window as any).__ide.editors.editor.getModel().getValue()) as string;
+    const text = await page.evaluate(() => window.__ide.editors.editor.getModel()!.getValue()) as string;
     await setText(page, `${text.trimEnd()}\nexpect rule SUP.action.\n`);
     await placeCursor(page, 'expect rule SUP.action.\n', 'expect rule SUP.action.'.length);
     await page.keyboard.press('Control+Space');
@@ -95,7 +96,7 @@ describe('.scenario files in the IDE (headless Chromium)', () => {
     expect(labels).toEqual(expect.arrayContaining(['FIRST', 'SECOND', 'THIRD', 'FOURTH', 'RECEPTION']));
     await shot(page, 'scenario-completion');
     await page.keyboard.press('Enter'); // accepts the first item
-    await expect.poll(() => page.evaluate(() => (window as any).__ide.editors.editor.getModel().getValue()), { timeout: 5000 })
+    await expect.poll(() => page.evaluate(() => window.__ide.editors.editor.getModel()!.getValue()), { timeout: 5000 })
       .toMatch(/expect rule SUP\.action\.(FIRST|SECOND|THIRD|FOURTH|RECEPTION)\n/);
     // An incomplete expectation (no active/inactive) is a syntax error marker.
     await expect.poll(() => markers(page).then((m) => m.map((x) => x.code)), { timeout: 10_000 }).toEqual(['scenario-syntax']);

@@ -12,6 +12,7 @@ import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { spawnSync } from 'node:child_process';
 import { startSession, openIde, shot, PKG, type Session } from './harness.js';
+import type {} from '../../src/app/ide-hook.js';
 
 let s: Session;
 beforeAll(async () => {
@@ -27,7 +28,7 @@ const simRule = (page: Page, id: string) => page.locator(`.sim-rule[data-rule="$
 const monitorRule = (page: Page, id: string) => page.locator(`.monitor-rule[data-rule="${id}"]`);
 /** Waits for the session's re-simulation after a click: the panel's virtual time says `t`. */
 const now = (page: Page) => page.locator('.sim-now').textContent();
-const stepValue = (page: Page) => page.evaluate(() => (window as any).__ide.simulate.panel.stepInput.value as string);
+const stepValue = (page: Page) => page.evaluate(() => window.__ide.simulate.panel.stepInput.value as string);
 /**
  * Types a step into the step field (a one-line Monaco editor) and clicks Inject (not Enter: under
  * load a completion list can open late and take the Enter).
@@ -71,7 +72,7 @@ describe('Simulate panel', () => {
     await page.keyboard.press('Escape');
     await injectStep(page, 'MAA:2 3');
     await expect.poll(() => page.locator('.sim-message').textContent(), { timeout: 30_000 }).toMatch(/error\(s\).*line 4:\d+: .*MAA:2 3/s);
-    expect(await page.evaluate(() => (window as any).__ide.simulate.session.lines.length)).toBe(0);
+    expect(await page.evaluate(() => window.__ide.simulate.session.lines.length)).toBe(0);
 
     // a click on MAA's out event port :2 in the Monitor's diagram starts that step, with its values offered
     await expect.poll(() => page.locator('.monitor-view .arch-svg').getAttribute('data-schema'), { timeout: 15_000 }).toBe('schemaReceptionMessage');
@@ -84,7 +85,7 @@ describe('Simulate panel', () => {
     await expect.poll(() => page.locator('.monitor-modules').textContent(), { timeout: 10_000 }).toBe('Running now: MAA, MAB');
     await injectStep(page, 'finish MAB');
     await expect.poll(() => page.locator('.monitor-modules').textContent(), { timeout: 30_000 }).toBe('Running now: MAA');
-    expect(await page.evaluate(() => (window as any).__ide.simulate.session.lines.length)).toBe(1);
+    expect(await page.evaluate(() => window.__ide.simulate.session.lines.length)).toBe(1);
 
     // inject the disconnection: SECOND active, caused by it; FIRST inactive
     await injectStep(page, 'MAA:2 connection_status = "disconnected"');
@@ -137,7 +138,7 @@ describe('Simulate panel', () => {
     expect(await page.locator('.sim-params').inputValue()).toBe('consigne = {1.0, 2.0, 3.0}');
     // the time is shown before the restored session is simulated again, the message after: waited for
     await expect.poll(() => page.locator('.sim-message').textContent(), { timeout: 30_000 }).toBe('restored the session of SUP.action from before the reload: 2 step(s), at 6ms');
-    expect(await page.evaluate(() => (window as any).__ide.simulate.session.lines.map((l: { text: string }) => l.text))).toEqual(['finish MAB', 'MAA:2 connection_status = "disconnected"']);
+    expect(await page.evaluate(() => window.__ide.simulate.session.lines.map((l: { text: string }) => l.text))).toEqual(['finish MAB', 'MAA:2 connection_status = "disconnected"']);
     await expect.poll(() => simRule(page, 'SUP.action.SECOND').getAttribute('class'), { timeout: 30_000 }).toBe('sim-rule active');
     await expect.poll(() => monitorRule(page, 'SUP.action.SECOND').getAttribute('data-active'), { timeout: 10_000 }).toBe('true');
     // the session goes on from there
@@ -170,12 +171,12 @@ describe('Simulate panel', () => {
     await page.locator('.sim-step .view-lines').click();
     await page.keyboard.press('Escape');
     await expect.poll(() => page.evaluate(() => !!document.activeElement?.closest('.simulate-panel'))).toBe(false);
-    const lines = () => page.evaluate(() => (window as any).__ide.editors.editor.getModel().getLineCount() as number);
+    const lines = () => page.evaluate(() => window.__ide.editors.editor.getModel()!.getLineCount() as number);
     const before2 = await lines();
     await page.keyboard.press('End');
     await page.keyboard.press('Enter');
     await expect.poll(lines).toBe(before2 + 1);
-    expect(await page.evaluate(() => (window as any).__ide.simulate.session.lines.length)).toBe(2);
+    expect(await page.evaluate(() => window.__ide.simulate.session.lines.length)).toBe(2);
     await page.keyboard.press('ControlOrMeta+Z');
     await expect.poll(lines).toBe(before2);
   }, 180_000);

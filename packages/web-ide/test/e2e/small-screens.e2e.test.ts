@@ -15,6 +15,7 @@ import { fileURLToPath } from 'node:url';
 import type { Page } from 'playwright-core';
 import { openFile, openIde, placeCursor, shot, startSession, waitSaved, type Session } from './harness.js';
 import { axeScan, seriousOf } from './axe.js';
+import type {} from '../../src/app/ide-hook.js';
 
 const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/tutorial-run', import.meta.url));
 
@@ -173,7 +174,7 @@ describe('a 1366x768 laptop at 150 % (911x512 at scale 1.5, reduce motion)', () 
     expect(pane.height).toBeGreaterThanOrEqual(220); // 135 before
     expect((await box(page, '.bottom-panel')).height).toBeGreaterThanOrEqual(80);
     for (const id of ['monitor-prev', 'monitor-follow', 'monitor-play', 'monitor-next']) expect(await page.locator(`#${id}`).isDisabled(), id).toBe(true);
-    await page.evaluate(() => (window as any).__ide.monitor.openFolder('recorded'));
+    await page.evaluate(() => window.__ide.monitor.openFolder('recorded'));
     await expect.poll(() => page.locator('.monitor-rule').count(), { timeout: 15_000 }).toBeGreaterThan(3);
     for (const id of ['monitor-prev', 'monitor-follow', 'monitor-play', 'monitor-next']) expect(await page.locator(`#${id}`).isDisabled(), id).toBe(false);
     expect((await box(page, '.monitor-body')).height).toBeGreaterThanOrEqual(40); // 8 before
@@ -313,7 +314,7 @@ describe('the Monitor\'s readout and slider (1366x768 at 100 %)', () => {
     const { page } = s;
     await page.keyboard.press('Alt+Shift+M');
     await page.locator('.monitor-view').waitFor();
-    await page.evaluate(() => (window as any).__ide.monitor.followLive('fed', null));
+    await page.evaluate(() => window.__ide.monitor.followLive('fed', null));
     await expect.poll(() => page.locator('.monitor-time').textContent()).toBe('waiting for the run\'s first record · live');
     const width = async () => Math.round((await box(page, '.monitor-slider')).width);
     const widths = [await width()];
@@ -321,7 +322,7 @@ describe('the Monitor\'s readout and slider (1366x768 at 100 %)', () => {
     const lines = readdirSync(FIXTURE).filter((f) => f.endsWith('.csv'))
       .flatMap((file) => readFileSync(join(FIXTURE, file), 'utf8').split('\n').map((text, i) => ({ file, line: i + 1, text })))
       .filter((l) => /^\d+,/.test(l.text)).sort((a, b) => Number(BigInt(a.text.split(',')[0]!) - BigInt(b.text.split(',')[0]!)));
-    await page.evaluate((records) => (window as any).__ide.monitor.feed('fed', records), lines);
+    await page.evaluate((records) => window.__ide.monitor.feed('fed', records), lines);
     await expect.poll(() => page.locator('.monitor-time').textContent()).toContain('live (last record');
     widths.push(await width());
     await page.locator('#monitor-follow').click(); // Pause

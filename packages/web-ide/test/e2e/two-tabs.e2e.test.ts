@@ -10,6 +10,7 @@ import { createHash } from 'node:crypto';
 import { join } from 'node:path';
 import type { Page, Request } from 'playwright-core';
 import { shot, placeCursor, activeValue, openFile, waitSaved, openAnotherTab, type Session, startTwoBrowsersOn } from './harness.js';
+import type {} from '../../src/app/ide-hook.js';
 
 let s: Session;
 let other: { page: Page; close(): Promise<void> };
@@ -74,7 +75,7 @@ describe('one file edited in two IDE tabs and by a script', () => {
     await expect.poll(() => activeValue(a), { timeout: 10_000 }).toBe(expected);
     await b.locator('.toast.info', { hasText: 'merged with a change made elsewhere' }).first().waitFor({ timeout: 5000 });
     // the cursor stayed where b was typing
-    const line = await b.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber);
+    const line = await b.evaluate(() => window.__ide.editors.editor.getPosition()!.lineNumber);
     expect(expected.split('\n')[line - 1]).toContain('offline edit');
     await waitSaved(b);
   });
@@ -122,7 +123,7 @@ describe('one file edited in two IDE tabs and by a script', () => {
     expect(disk()).toBe(withA);
     // resolved on the right side (both comments kept), then saved
     await b.evaluate(() => {
-      const m = ((window as any).__ide.monaco.editor.getModels() as Array<{ uri: { scheme: string }; getValue(): string; setValue(t: string): void; isDisposed(): boolean }>)
+      const m = (window.__ide.monaco.editor.getModels() as Array<{ uri: { scheme: string }; getValue(): string; setValue(t: string): void; isDisposed(): boolean }>)
         .find((x) => !x.isDisposed() && x.uri.scheme === 'conflict' && x.getValue().includes('<<<<<<< yours'))!;
       m.setValue(m.getValue().replace(/<<<<<<< yours\n[^]*?>>>>>>> on disk\n/, '        schemaCommande1; // from tab A // from tab B\n'));
     });
@@ -162,7 +163,7 @@ describe('one file edited in two IDE tabs and by a script', () => {
     expect(await b.locator('.conflict-overlay .conflict-choices').textContent()).toMatch(/^Keep my version \(this tab\): your text wins, the other change is lost\. Keep the version on disk/);
     // the long line wraps: the right side never scrolls sideways (its text fits its width)
     const fits = () => b.evaluate(() => {
-      const e = ((window as any).__ide.monaco.editor.getEditors() as Array<{ getModel(): { uri: { scheme: string; path: string } } | null; getScrollWidth(): number; getLayoutInfo(): { width: number } }>)
+      const e = window.__ide.monaco.editor.getEditors()
         .find((x) => x.getModel()?.uri.scheme === 'conflict' && x.getModel()!.uri.path.includes('/yours/'))!;
       return e.getScrollWidth() <= e.getLayoutInfo().width;
     });
@@ -203,7 +204,7 @@ describe('one file edited in two IDE tabs and by a script', () => {
     const b = other.page;
     await waitSaved(b);
     const base = disk();
-    const root = await b.evaluate(() => (window as any).__ide.workspace.root);
+    const root = await b.evaluate(() => window.__ide.workspace.root);
     // the copy a tab kept before a reload: its text and the base it was edited from, as an earlier
     // version kept it (one entry per file): moved to this tab's own entry at the load, none lost
     const copy = { v: 1, text: base.replace('MSB;', 'MSB; // kept in the browser'), baseText: base, baseVersion: createHash('sha256').update(base).digest('hex') };
