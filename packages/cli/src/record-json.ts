@@ -11,7 +11,15 @@
  * `\` (nearly every field of a runtime log) is the same text in JSON and is written as it is; any
  * other string goes the general way (JSON.stringify, then escapeControls), and so does a record
  * holding anything that is not plain data (a toJSON, a bigint, a boxed value, an object of a class).
+ *
+ * A record's `fields` (the object under the key `fields` of the line's object) is written with
+ * each key's one JSON type (build-service trace/field-types.ts): a number key's value as a JSON
+ * number with its exact digits, also past 15 digits where the reader keeps them as text
+ * (`"tick_ns":9123357357727918`), a string key's value as a string (`"value":"12"`). JSON.stringify
+ * would write the reader's types (a number up to 15 digits, a string beyond): jsonTypedFields gives
+ * the value that general path must be given to write the same bytes.
  */
+import { fieldJsonType } from '@contract-studio/build-service/trace';
 import { escapeControls } from './terminal-text.js';
 
 /** A character JSON.stringify or escapeControls writes otherwise than as itself: a control, `"`, `\`, DEL, anything past ASCII. */
@@ -40,7 +48,8 @@ export class JsonLines {
     add(record: object): void {
         const start = this.pos;
         try {
-            this.value(record);
+            if (typeof record === 'object' && record !== null && !Array.isArray(record)) this.object(record, true);
+            else this.value(record);
         } catch (e) {
             this.pos = start;
             if (e !== NOT_PLAIN) throw e;
@@ -130,6 +139,27 @@ export class JsonLines {
         this.pos = p;
     }
 
+    /** A record's `fields`: each value with its key's JSON type (fieldJsonValue), other keys as JSON.stringify writes them. */
+    private fields(o: object): void {
+        const proto = Object.getPrototypeOf(o) as unknown;
+        if ((proto !== Object.prototype && proto !== null) || typeof (o as { toJSON?: unknown }).toJSON === 'function') throw NOT_PLAIN;
+        this.ascii('{');
+        let first = true;
+        for (const key in o) {
+            if (!hasOwn.call(o, key)) continue;
+            const raw = (o as Record<string, unknown>)[key];
+            const v = fieldJsonValue(key, raw);
+            if (v === undefined || omitted(v)) continue;
+            if (!first) this.ascii(',');
+            first = false;
+            this.string(key);
+            this.ascii(':');
+            if (v instanceof ExactDigits) this.ascii(v.digits);
+            else this.value(v);
+        }
+        this.ascii('}');
+    }
+
     /** `v` written as JSON.stringify writes it (the caller leaves out what it leaves out: `omitted`). */
     private value(v: unknown): void {
         switch (typeof v) {
@@ -161,7 +191,7 @@ export class JsonLines {
         this.ascii(']');
     }
 
-    private object(o: object): void {
+    private object(o: object, top = false): void {
         const proto = Object.getPrototypeOf(o) as unknown;
         if ((proto !== Object.prototype && proto !== null) || typeof (o as { toJSON?: unknown }).toJSON === 'function') throw NOT_PLAIN;
         this.ascii('{');
@@ -176,13 +206,56 @@ export class JsonLines {
             first = false;
             this.string(key);
             this.ascii(':');
-            this.value(v);
+            if (top && key === 'fields' && typeof v === 'object' && v !== null && !Array.isArray(v)) this.fields(v);
+            else this.value(v);
         }
         this.ascii('}');
     }
 }
 
 const hasOwn = Object.prototype.hasOwnProperty;
+
+/** An integer's exact decimal digits, written as a JSON number as they are. */
+class ExactDigits {
+    constructor(readonly digits: string) {}
+}
+
+/** `-?\d+`: an integer's text, of any length (the reader keeps one past 15 digits as this text). */
+const INTEGER_TEXT = /^-?\d+$/;
+
+/**
+ * A `fields` value as its key's JSON type writes it: a number key's integer (a number, or the
+ * digits the reader kept as text) as its exact digits (no leading zeros: JSON has none), a number
+ * key's other word (not an integer: a forged line) left out (undefined); a string key's number as
+ * its text. A key of no known type is written as it is.
+ */
+function fieldJsonValue(key: string, v: unknown): unknown {
+    const type = fieldJsonType(key);
+    if (type === 'number') {
+        if (typeof v === 'number') return Number.isFinite(v) ? v : undefined;
+        if (typeof v !== 'string' || !INTEGER_TEXT.test(v)) return undefined;
+        const negative = v.charCodeAt(0) === 45;
+        const digits = v.slice(negative ? 1 : 0).replace(/^0+(?=\d)/, '');
+        return new ExactDigits(negative && digits !== '0' ? `-${digits}` : digits);
+    }
+    if (type === 'string' && typeof v === 'number') return String(v);
+    return v;
+}
+
+/**
+ * A record's `fields` as jsonTypedFields: the object JSON.stringify must be given to write what
+ * JsonLines writes, its exact digits past 2^53 as BigInt (JSON.stringify cannot write those: a test
+ * writes them with its own replacer); for tests and readers of the rule.
+ */
+export function jsonTypedFields(fields: Record<string, unknown>): Record<string, unknown> {
+    const out: Record<string, unknown> = {};
+    for (const key of Object.keys(fields)) {
+        const v = fieldJsonValue(key, fields[key]);
+        if (v === undefined) continue;
+        out[key] = v instanceof ExactDigits ? BigInt(v.digits) : v;
+    }
+    return out;
+}
 
 /** A property JSON.stringify leaves out of an object (an array's element of that kind is `null`). */
 function omitted(v: unknown): boolean {

@@ -26,6 +26,7 @@ export { ProducerChanges, isInterleave } from './producer-changes.js';
 export { MinHeap } from './min-heap.js';
 export { TRACE_LINES_KEPT } from './replay-bound.js';
 export { renderTraceTable, withTraceTable } from './render-doc.js';
+export { allFieldKeys, fieldJsonType, fieldKeysOf, type FieldJsonType } from './field-types.js';
 export { isRule, isUnknown, countRecord, type RecordCounts, type TraceRecord, type TraceRecordBase, type RuleRecord, type RuleCause, type KnownRecord, type UnknownRecord } from './records.js';
 export { encodeTraceRecords, decodeTraceRecords, forEachTraceRecord, forEachTraceLine, TraceWireError, type TraceWire, type TraceLine } from './wire.js';
 export { LogClock, LogClocks, monoBeyondInt64, monoTextProblem, wallTimeMs, posingAs, posingText, ORD_MODULE, BACK_TOLERANCE_NS, JUMP_CHECKED_NS, WALL_TOLERANCE_NS } from './log-clock.js';
