@@ -377,9 +377,9 @@ describe('6. a crashed module', () => {
         writeFileSync(join(dir, 'JSN_1.csv'), '{"kind":"user"}\n');
         writeFileSync(join(dir, 'EMP_1.csv'), `${HEADER}\n`);
         const io = capture(root);
-        expect(await runCli(['trace', 'not-logs'], io)).toBe(0);
+        expect(await runCli(['trace', 'not-logs', '--merge-logs'], io)).toBe(0);
         const lines = io.stdout.split('\n');
-        expect(lines).toContain('           CTL  2 logs of it in this folder (CTL_1.csv, CTL_2.csv), read as one: a run writes one log per module (two runs\' logs together, or a file named as its log that is not one)');
+        expect(lines[0]).toBe('warning: CTL: 2 logs of it in this folder (CTL_1.csv, CTL_2.csv), read as one: a run writes one log per module (two runs\' logs together, or a file named as its log that is not one); the story and its figures add them up');
         expect(lines).toContain('           JSN  no record in its log, only 1 unreadable line(s): not a runtime log (one begins with the CSV header, then the module\'s start record)');
         expect(lines).toContain('           EMP  no record in its log: it crashed, hung or was killed before writing any (the launcher\'s output says which)');
         expect(lines.filter((l) => / ORD  .*logs of it|ORD  no record/.test(l))).toEqual([]);

@@ -26,15 +26,16 @@ export const traceCommand: Command = {
     name: 'trace',
     summary: 'tell a recorded run from its CSV logs or a trace file (rule changes with causes, schemas, deadline misses)',
     usage: [
-        'usage: contract trace LOGDIR|FILE.jsonl [--format text|json]',
+        'usage: contract trace LOGDIR|FILE.jsonl [--format text|json] [--merge-logs]',
         '  LOGDIR: the folder of a run\'s CSV logs (`contract run --logs`, default PROJECT/logs)',
         '  FILE.jsonl: a trace file (`contract run --trace`, `contract trace --format json`, `contract simulate --trace`), told in its order',
         '  --format: text (default: the story, then a count of the records and, apart, of the unreadable lines) or json (one JSON object per record and line, time order; an unreadable line is an object of kind "unknown"; the launcher\'s end lines, from LOGDIR\'s contract-launch.log or FILE, objects of kind "launcher_line")',
+        '  --merge-logs: read two or more logs of one module in LOGDIR (two runs\' logs together) as one, with exit 0; without it they are read as one all the same, said first (stderr, and the story\'s first lines), and the exit status is 1',
         '  a file named like a log that is not read (a symbolic link, a FIFO, socket or device) is left out with a warning',
-        'exit status: 0 success, 1 no readable log in LOGDIR, or no record in its logs (in FILE.jsonl; unreadable lines are no records), 2 bad usage (LOGDIR missing, not a folder nor a .jsonl file)',
+        'exit status: 0 success, 1 no readable log in LOGDIR, or no record in its logs, or two logs of one module in it without --merge-logs (in FILE.jsonl; unreadable lines are no records), 2 bad usage (LOGDIR missing, not a folder nor a .jsonl file)',
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
-        const parsed = parseArgs(args, ['format']);
+        const parsed = parseArgs(args, ['format'], ['merge-logs']);
         if (parsed.positionals.length !== 1) throw new UsageError('expected one LOGDIR or FILE.jsonl');
         const format = parsed.options.get('format') ?? 'text';
         if (format !== 'text' && format !== 'json') throw new UsageError(`unknown format '${String(format)}' (expected text or json)`);
@@ -51,12 +52,16 @@ export const traceCommand: Command = {
             io.err(`contract trace: ${logs}\n`);
             return EXIT_FAILURE;
         }
+        // two logs of one module (two runs' logs together): said before anything else, in every
+        // format, and the exit status 1 unless --merge-logs asked for it (the story's figures add both)
+        const twins = twinLogLines(logs);
+        for (const t of twins) io.err(`contract trace: warning: ${t}\n`);
         try {
             // the launcher's own lines (its end line of a module killed from outside): told in the
             // story, and written among the JSON lines (kind launcher_line) as a `--trace` file holds them
             const launcherProblems: string[] = [];
             const launcher = new LauncherLinesQueue(await readLauncherLines(dir, launcherProblems));
-            const { late, problems, counts } = format === 'json' ? await printJson(logs, io, launcher) : await printStory(logs, io, launcher);
+            const { late, problems, counts } = format === 'json' ? await printJson(logs, io, launcher) : await printStory(logs, io, launcher, twins);
             problems.push(...launcherProblems);
             if (format === 'text') await printCrashSites(dir, io, problems);
             for (const p of problems) io.err(`contract trace: warning: ${p}\n`);
@@ -64,6 +69,10 @@ export const traceCommand: Command = {
             if (counts?.records === 0) {
                 const only = counts.unreadable ? `only ${counts.unreadable} unreadable line(s)` : 'empty, or only their header';
                 io.err(`contract trace: no record in the ${logs.length} log(s) of ${safeName(dirArg)} (${only})\n`);
+                return EXIT_FAILURE;
+            }
+            if (twins.length && parsed.options.get('merge-logs') !== true) {
+                io.err(`contract trace: ${safeName(dirArg)} holds two or more logs of ${twins.length} module(s), said above (two runs' logs together, read as one): exit 1; give the folder of one run (\`contract run\` moves the previous run's logs to OUT/previous/), or --merge-logs to read them as one with exit 0\n`);
                 return EXIT_FAILURE;
             }
             return EXIT_OK;
@@ -145,9 +154,10 @@ async function printJson(logs: readonly OpenLog[], io: CliIO, launcher: Launcher
  * The story: its lines printed as they come (few: a reader gone is seen at the next), then what
  * the logs say of modules that did not end (a crash leaves no exit record), then the counts.
  */
-async function printStory(logs: readonly OpenLog[], io: CliIO, launcher?: LauncherLinesQueue): Promise<Printed> {
+async function printStory(logs: readonly OpenLog[], io: CliIO, launcher?: LauncherLinesQueue, twins: readonly string[] = []): Promise<Printed> {
     const stream = streamTrace(logs);
     const story = new Story(new ModuleEnds(logs), launcher);
+    if (!(await print(io, twins.map((t) => `warning: ${t}\n`).join('')))) return { late: 0, problems: [] };
     for await (const batch of stream.batches) {
         if (!(await print(io, batch.map((r) => story.line(r)).join('')))) return { late: stream.outOfOrder(), problems: stream.problems() };
     }
@@ -172,6 +182,16 @@ async function print(io: CliIO, piece: string): Promise<boolean> {
         await io.drained?.();
     }
     return !io.outputClosed?.aborted;
+}
+
+/**
+ * One line per module with two or more logs in the folder (a run writes one per module: two runs'
+ * logs together, or a file named as its log that is not one), the first MODULES_FOLLOWED: read as
+ * one, so the story and the schema figures add them up. Said before the story.
+ */
+export function twinLogLines(logs: readonly { name: string }[]): string[] {
+    return [...twinLogs(logs.map((l) => l.name))].slice(0, MODULES_FOLLOWED).map(([m, files]) =>
+        `${safeName(m)}: ${files.length} logs of it in this folder (${files.slice(0, 3).map(safeName).join(', ')}${files.length > 3 ? ', ...' : ''}), read as one: ${TWIN_LOGS_WHY}; the story and its figures add them up`);
 }
 
 /** A story told record by record: its lines, then what the logs say of modules that did not end (ModuleEnds), then the flows that delivered nothing or waited for room, then each periodic schema's figures and the counts. */
@@ -278,18 +298,11 @@ export class ModuleEnds {
     /** Modules the launcher's own end line (the logs folder's contract-launch.log) told ended, with that line. */
     private readonly launcherEnds = new Map<string, string>();
 
-    /** Modules with more than one log in the folder, and those logs' names. */
-    private readonly twins = new Map<string, string[]>();
-
     /** `namedElsewhere`: a trace file whose own bad lines its reader names (not named again here). */
     constructor(logs: readonly { name: string }[], private readonly namedElsewhere?: string) {
         for (const l of logs) {
             const named = moduleNamedByLog(l.name);
             if (named !== undefined) this.follow(named);
-        }
-        for (const [m, files] of twinLogs(logs.map((l) => l.name))) {
-            const kept = this.follow(m);
-            if (kept !== undefined) this.twins.set(kept, files);
         }
     }
 
@@ -393,9 +406,6 @@ export class ModuleEnds {
             out.push(this.exited.has(m)
                 ? `${''.padStart(10)} ${m.padEnd(4)} its log lacks its start record: it was cut or rewritten after the module began (its code may have truncated it)`
                 : `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record; its log holds neither its start nor its exit record: it was cut or rewritten after the module began (its code may have truncated it), and how it ended is not in it (the launcher's output says it)`);
-        }
-        for (const [m, files] of this.twins) {
-            out.push(`${''.padStart(10)} ${m.padEnd(4)} ${files.length} logs of it in this folder (${files.slice(0, 3).map(safeName).join(', ')}${files.length > 3 ? ', ...' : ''}), read as one: ${TWIN_LOGS_WHY}`);
         }
         for (const m of this.modules.keys()) {
             if (!this.last.has(m)) {
