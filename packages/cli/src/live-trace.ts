@@ -6,9 +6,10 @@
  * the end the caller compares it with the digest of the collected logs' JSON lines (read as a
  * stream, trace-stream.ts) and rewrites the file when they differ.
  *
- * The launcher's end lines (`contract-launch: module MAB (pid 41) died by signal 9 (Killed)`: the
- * job's `line` events of source `launcher`, never a module's output, which comes tagged with its
- * name) are written among the records as `launcher_line` objects (build-service
+ * The launcher's end lines of a module that ended on its own (`contract-launch: module MAB (pid 41)
+ * died by signal 9 (Killed)`: the job's `line` events of source `launcher`, never a module's
+ * output, which comes tagged with its name; not `exited with status 0` at the run's stop) are
+ * written among the records as `launcher_line` objects (build-service
  * trace/launcher-line-record.ts). The live channel gives such a line no time of its own: it is
  * written at the time of the last record written before it came; the end-of-run check writes it
  * again at the time the launcher's lines file of the logs folder (contract-launch.log) gives it,
@@ -18,7 +19,7 @@ import { createHash, type Hash } from 'node:crypto';
 import { constants, promises as fsp } from 'node:fs';
 import { lstat, type FileHandle } from 'node:fs/promises';
 import type { JobEvent } from '@contract-studio/build-service';
-import { LauncherLinesQueue, LogClocks, countRecord, launcherEndLine, launcherLineJson, parseRecordLine, type RecordCounts, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
+import { LauncherLinesQueue, LogClocks, countRecord, endedOnItsOwn, launcherEndLine, launcherLineJson, parseRecordLine, type RecordCounts, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
 import { readLauncherLines } from './launcher-lines.js';
 import { lockTraceFile, openTraceFile } from './trace-files.js';
 import { JsonLines } from './record-json.js';
@@ -81,7 +82,12 @@ export class LiveTrace {
     event(e: JobEvent): void {
         if (this.failed) return;
         if (e.type === 'line') {
-            if (e.source !== 'launcher' || e.step !== 'run' || this.lastMonoNs === undefined || !launcherEndLine(e.line)) return;
+            if (e.source !== 'launcher' || e.step !== 'run' || this.lastMonoNs === undefined) return;
+            // only a module's end on its own (a kill from outside, an exit with a status): the end
+            // of every module at the run's stop is its exit record's to say, and written live at
+            // another time than its own it would make a normal run's file differ from its logs'
+            const end = launcherEndLine(e.line);
+            if (!end || !endedOnItsOwn(end.how)) return;
             this.lines.add(launcherLineJson({ monoNs: this.lastMonoNs, line: e.line }));
         } else if (e.type === 'trace') {
             const records = e.records.map((l) => parseRecordLine(l.file, l.line, l.text, this.clocks.of(l.file)));
@@ -139,12 +145,12 @@ export class LiveTrace {
  * file is not intact (LiveTrace.close: another writer, a move or a replacement during the run):
  * written whole to a new file beside it, then renamed over the path (never through a link: a link
  * put there meanwhile is replaced, its target untouched). The records counted (with `replaced`
- * when the file was not intact), or why the logs could not be read. A run that left no logs keeps
+ * when the file was not intact, `rewritten` when a new file took the path), or why the logs could not be read. A run that left no logs keeps
  * what came live (`live.counts`). `observe` sees each record of the logs once, in the order written.
  * The launcher's end lines of `dir`'s contract-launch.log are written among the records, in time
  * order (`launcher_line` objects, as `contract trace DIR --format json` writes them).
  */
-export async function settleTraceFile(dir: string, names: readonly string[], traceFile: string, live: { digest: string; counts: RecordCounts; intact?: boolean }, observe?: (r: TraceRecord) => void): Promise<(RecordCounts & { replaced?: boolean }) | string> {
+export async function settleTraceFile(dir: string, names: readonly string[], traceFile: string, live: { digest: string; counts: RecordCounts; intact?: boolean }, observe?: (r: TraceRecord) => void): Promise<(RecordCounts & { replaced?: boolean; rewritten?: boolean }) | string> {
     const replaced = live.intact === false ? { replaced: true } : {};
     if (!names.length) return { ...live.counts, ...replaced };
     const logs = await openLogFolder(dir, names);
@@ -168,7 +174,7 @@ export async function settleTraceFile(dir: string, names: readonly string[], tra
             await fsp.unlink(temp).catch(() => {});
             throw e;
         }
-        return { ...counts, ...replaced };
+        return { ...counts, ...replaced, rewritten: true };
     } finally {
         await closeLogs(logs);
     }

@@ -11,7 +11,7 @@
  */
 import { constants, promises as fsp } from 'node:fs';
 import { join } from 'node:path';
-import { MinHeap, isLogFileName, countRecord, launcherLineJson, type LauncherLinesQueue, type RecordCounts, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
+import { MinHeap, isLogFileName, countRecord, endedOnItsOwn, launcherLineJson, type LauncherLinesQueue, type RecordCounts, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
 import { CHUNK_BYTES } from './bounded-lines.js';
 import { LogRecords, LogWindow } from './log-window.js';
 import { JsonLines } from './record-json.js';
@@ -155,7 +155,9 @@ export const PIECE_BYTES = 256 * 1024;
  * awaited; a sink answering false stops the read. `observe` sees each record as it is written
  * (another reader of the same pass: `contract run`'s schema figures). Returns the records handed
  * on (readable ones, and unreadable lines apart: countRecord) and those told later than their time.
- * `launcher`: the logs folder's launcher end lines (its contract-launch.log), each written as a
+ * `launcher`: the logs folder's launcher end lines (its contract-launch.log), each that says a
+ * module ended on its own (endedOnItsOwn: a signal the launcher did not send, an exit with a
+ * status; not the end of every module at the run's stop, which its exit record says) written as a
  * `launcher_line` object before the first record of a later time (the rest after the last record).
  */
 export async function jsonLinesOf(logs: readonly OpenLog[], sink: (piece: Buffer) => Promise<boolean | void> | boolean | void, observe?: (r: TraceRecord) => void, launcher?: LauncherLinesQueue): Promise<{ counts: RecordCounts; outOfOrder: number; problems: string[] }> {
@@ -164,7 +166,7 @@ export async function jsonLinesOf(logs: readonly OpenLog[], sink: (piece: Buffer
     const lines = new JsonLines(PIECE_BYTES + 64 * 1024);
     for await (const batch of stream.batches) {
         for (const r of batch) {
-            if (launcher && r.kind !== 'unknown') for (const l of launcher.before((r as TraceRecordBase).monoNs)) lines.add(launcherLineJson(l));
+            if (launcher && r.kind !== 'unknown') for (const l of launcher.before((r as TraceRecordBase).monoNs)) if (endedOnItsOwn(l.how)) lines.add(launcherLineJson(l));
             lines.add(r);
             countRecord(counts, r);
             observe?.(r);
@@ -174,7 +176,7 @@ export async function jsonLinesOf(logs: readonly OpenLog[], sink: (piece: Buffer
             if (go === false) return { counts, outOfOrder: stream.outOfOrder(), problems: stream.problems() };
         }
     }
-    for (const l of launcher?.rest() ?? []) lines.add(launcherLineJson(l));
+    for (const l of launcher?.rest() ?? []) if (endedOnItsOwn(l.how)) lines.add(launcherLineJson(l));
     if (lines.length) await sink(lines.take());
     return { counts, outOfOrder: stream.outOfOrder(), problems: stream.problems() };
 }

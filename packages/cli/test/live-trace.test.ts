@@ -58,10 +58,28 @@ describe('LiveTrace', () => {
         live.event(trace(1, 3));
         live.event({ type: 'line', seq: 4, t: 0, step: 'run', source: 'launcher', stream: 'stderr', line: 'module SUP (pid 2) died by signal 9 (Killed)' });
         const closed = await live.close();
-        expect(await settleTraceFile(logs, ['SUP_1.csv'], path, { ...closed, counts: live.counts })).toEqual({ records: 3, unreadable: 0 });
+        expect(await settleTraceFile(logs, ['SUP_1.csv'], path, { ...closed, counts: live.counts })).toEqual({ records: 3, unreadable: 0, rewritten: true });
         live.release();
         const rec = (n: number) => toJsonLines([parseRecordLine('SUP_1.csv', n + 1, line(n).text)]);
         expect(readFileSync(path, 'utf8')).toBe(`${rec(1)}${rec(2)}{"kind":"launcher_line","monoNs":"1002","line":"module SUP (pid 2) died by signal 9 (Killed)"}\n${rec(3)}`);
+    });
+
+    it('a normal run\'s stop (`exited with status 0` lines): no launcher_line live nor settled, the file left as written (the same file: a follower by name reads nothing twice)', async () => {
+        const logs = join(dir, 'stop-logs');
+        mkdirSync(logs);
+        writeFileSync(join(logs, 'SUP_1.csv'), `${CSV_HEADER}\n${[1, 2, 3].map((n) => line(n).text).join('\n')}\n`);
+        writeFileSync(join(logs, 'contract-launch.log'), '1001 run directory /x\n1002 stopping: the run\'s duration (3 s) is over\n1002 module SUP (pid 2) exited with status 0\n1004 all modules stopped cleanly\n');
+        const path = join(dir, 'stop.jsonl');
+        const live = await LiveTrace.open(path);
+        live.event(trace(1, 2));
+        live.event({ type: 'line', seq: 4, t: 0, step: 'run', source: 'launcher', stream: 'stderr', line: 'module SUP (pid 2) exited with status 0' });
+        live.event(trace(3, 1));
+        const closed = await live.close();
+        const before = statSync(path).ino;
+        expect(await settleTraceFile(logs, ['SUP_1.csv'], path, { ...closed, counts: live.counts })).toEqual({ records: 3, unreadable: 0 });
+        live.release();
+        expect(statSync(path).ino).toBe(before);
+        expect(readFileSync(path, 'utf8')).toBe(toJsonLines([1, 2, 3].map((n) => parseRecordLine('SUP_1.csv', n + 1, line(n).text))));
     });
 
     it('counts an unreadable line apart from the records, as `contract trace` and the Monitor do', async () => {
@@ -131,7 +149,7 @@ describe('LiveTrace', () => {
             const file = join(dir, 'run.jsonl');
             writeFileSync(file, 'live, partly\n');
             const seen: string[] = [];
-            expect(await settleTraceFile(dir, ['ORD_1.csv', 'SUP_1.csv'], file, { digest: sha('live, partly\n'), counts: { records: 1, unreadable: 0 } }, (r) => seen.push(told(r)))).toEqual({ records: 3, unreadable: 0 });
+            expect(await settleTraceFile(dir, ['ORD_1.csv', 'SUP_1.csv'], file, { digest: sha('live, partly\n'), counts: { records: 1, unreadable: 0 } }, (r) => seen.push(told(r)))).toEqual({ records: 3, unreadable: 0, rewritten: true });
             expect(readFileSync(file, 'utf8')).toBe(whole());
             // each record seen once (the pass that rewrote the file shows it none again), in time order
             expect(seen).toEqual(parseTrace(Object.entries(logs).map(([name, text]) => ({ name, text }))).map(told));

@@ -182,7 +182,7 @@ export const runCommand: Command = {
         '  --realtime: modules take their SCHED_FIFO priorities in the sandbox, bounded so that a runaway loop cannot freeze the machine (docs/sandbox.md "Real-time mode"); refused, saying why, where the host cannot grant it',
         '  --logs: folder the CSV logs (one per module) are copied to (default DIR/logs, never a link found there; collected from every sandbox, docker included);',
         '          it holds one run: the previous run\'s logs there are moved to OUT/previous/run-<time>/ first (never deleted)',
-        '  --trace: also write the records of those logs to FILE as JSON lines, in time order, as the run writes them (the live trace channel); at the end the same as `contract trace OUT --format json` (the launcher\'s end lines among them, kind launcher_line). FILE is named *.jsonl, a regular file or none (never a link or a FIFO); it is emptied at the run\'s first record: a build that fails leaves it as it was',
+        '  --trace: also write the records of those logs to FILE as JSON lines, in time order, as the run writes them (the live trace channel); at the end the same as `contract trace OUT --format json` (the launcher\'s end lines of modules that ended on their own among them, kind launcher_line; a normal run\'s file is only appended to, else it is written again at the end, said on stderr). FILE is named *.jsonl, a regular file or none (never a link or a FIFO); it is emptied at the run\'s first record: a build that fails leaves it as it was',
         ...LIMIT_USAGE,
         ...COMMON_USAGE,
         '  module output is printed as `[MODULE] line`, launcher lines as they come',
@@ -286,7 +286,9 @@ export const runCommand: Command = {
                 if (bytes >= TRACE_CHECK_SAID_BYTES) io.err(`trace: checking ${safeName(traceFile)} against the ${Math.round(bytes / 1048576)} MiB of CSV logs saved (one pass over every record)...\n`);
                 const whole = await settleTraceFile(logsDir, logs, traceFile, { digest, counts: live.counts, intact }, teller ? (r) => teller.tell(r) : undefined);
                 if (typeof whole === 'string') throw new Error(whole);
-                const { replaced, ...counted } = whole;
+                const { replaced, rewritten, ...counted } = whole;
+                // a follower of the file must know: by descriptor it reads the old file to its end, by name the new one from its start
+                if (rewritten && !replaced) io.err(`trace: ${safeName(traceFile)} was written again from the saved logs at the run's end, a new file renamed over its path: the records the live channel gave differ from the logs' (a module's end the launcher said, placed at its own time; records that came late or not at all); a follower that reopens it by name reads it again from its start (packages/cli/README.md "Following a trace file")\n`);
                 if (replaced) io.err(`trace: ${safeName(traceFile)} was written by another process, or moved or replaced, during the run: ${logs.length ? 'written again whole from this run\'s logs' : 'no log to write it again from: it is not this run\'s trace'}\n`);
                 trace = { file: traceFile, ...counted };
             } catch (e) {
