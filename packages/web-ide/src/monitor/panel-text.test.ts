@@ -104,17 +104,35 @@ describe('the histogram\'s CRITICAL_DELAY and PERIOD', () => {
     expect(markers[0]!.labelX + measure(markers[0]!.label)).toBeLessThanOrEqual(W); // whole on the canvas
   });
 
-  it('apart: two lines, each labelled on its own row, whole on the canvas, beside its line', () => {
-    for (const [cd, period] of [[50e6, 100e6], [1e6, 1.001e9], [1e9, 1e9 * 1.5]]) {
+  it('apart, close or far, either one greater: two lines, labels that meet neither each other nor the other line, whole on the canvas', () => {
+    const pairs = [[50e6, 100e6], [1e6, 1.001e9], [1e9, 1e9 * 1.5], [800e3, 1e6], [1e6, 800e3], [1e6, 1.1e6], [1e6, 1e3], [1.5e9, 1e9]];
+    for (const [cd, period] of pairs) {
       const markers = histogramMarkers(cd, period, xOf, W, measure);
-      expect(markers.map((m) => m.label).sort()).toEqual(['CRITICAL_DELAY', 'PERIOD']);
-      expect(overlap(markers[0]!, markers[1]!)).toBe(false);
+      const what = `CRITICAL_DELAY ${cd} PERIOD ${period}: ${JSON.stringify(markers)}`;
+      expect(markers.map((m) => m.label).sort(), what).toEqual(['CRITICAL_DELAY', 'PERIOD']);
+      expect(overlap(markers[0]!, markers[1]!), what).toBe(false);
       for (const m of markers) {
-        expect(m.labelX).toBeGreaterThanOrEqual(0);
-        expect(m.labelX + measure(m.label)).toBeLessThanOrEqual(W);
-        expect(m.x < m.labelX || m.x > m.labelX + measure(m.label)).toBe(true); // the label does not cover its line
+        expect(m.labelX, what).toBeGreaterThanOrEqual(0);
+        expect(m.labelX + measure(m.label), what).toBeLessThanOrEqual(W);
+        // the label covers no line, its own nor the other
+        for (const line of markers) expect(line.x < m.labelX || line.x > m.labelX + measure(m.label), what).toBe(true);
       }
     }
+    // close on the log axis (PERIOD 1 ms, CRITICAL_DELAY 800 µs): both on the top row, away from each other
+    const [period, cd] = histogramMarkers(800e3, 1e6, xOf, W, measure);
+    expect(cd!.labelX + measure(cd!.label)).toBeLessThan(cd!.x);
+    expect(period!.labelX).toBeGreaterThan(period!.x);
+    expect([cd!.row, period!.row]).toEqual([0, 0]);
+  });
+
+  it('two lines squeezed at the edge: the whole labels on two rows, else shortened', () => {
+    // both near the right edge: PERIOD's label cannot go right of its line, nor left (over CRITICAL_DELAY's line): it goes beyond it, on the row under
+    const squeezed = histogramMarkers(1e9, 1.5e9, xOf, W, measure);
+    expect(squeezed.map((m) => [m.label, m.row]), JSON.stringify(squeezed)).toEqual([['PERIOD', 1], ['CRITICAL_DELAY', 0]]);
+    // no room for the whole labels anywhere (a canvas 60 px wide): CD and P
+    const narrow = histogramMarkers(1e6, 1.3e6, (ns) => 50 + Math.log10(ns / 1e6) * 20, 60, measure);
+    expect(narrow.map((m) => m.label)).toEqual(['P', 'CD']);
+    expect(narrow[0]!.row !== narrow[1]!.row || !overlap(narrow[0]!, narrow[1]!)).toBe(true);
   });
 
   it('one of them unknown: only the other', () => {
