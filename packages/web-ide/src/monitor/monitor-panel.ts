@@ -96,7 +96,7 @@ export class MonitorPanel {
   frameMs: number[] = [];
 
   private readonly label = h('span', { class: 'monitor-source muted' }, 'No run yet');
-  private readonly sourceSelect = h('select', { class: 'monitor-sources', 'aria-label': 'Run to show', title: 'Run to show: the live run, a finished job\'s CSV logs, or CSV logs of the workspace' });
+  private readonly sourceSelect = h('select', { class: 'monitor-sources', 'aria-label': 'Run to show', title: RUN_LIST_TITLE });
   private readonly timeText = h('span', { class: 'monitor-time', 'aria-live': 'off' }, '');
   private readonly slider = h('input', { type: 'range', min: 0, max: 1000, step: 1, value: 1000, class: 'monitor-slider', 'aria-label': 'Time cursor' });
   private readonly followBtn = h('button', { class: 'btn small', id: 'monitor-follow', title: 'Put the cursor at the end of the run (End)' }, '⇥ End');
@@ -131,7 +131,10 @@ export class MonitorPanel {
     this.strip = new MarksStrip((f) => this.seek(f * (this.model?.end ?? 0)));
     // live: pause / follow again; a run that ended: to its end (it says what it does: no toggle)
     this.followBtn.addEventListener('click', () => this.setFollow(this.live ? !this.follow : true));
-    this.sourceSelect.addEventListener('change', () => this.deps.onSource(this.sourceSelect.value));
+    this.sourceSelect.addEventListener('change', () => {
+      this.drawSourceLabel();
+      this.deps.onSource(this.sourceSelect.value);
+    });
     this.playBtn.addEventListener('click', () => this.setPlaying(!this.playing));
     this.slider.addEventListener('input', () => this.seek((Number(this.slider.value) / 1000) * (this.model?.end ?? 0)));
     const step = (dir: -1 | 1) => this.jumpMark(dir);
@@ -185,6 +188,7 @@ export class MonitorPanel {
     this.live = live;
     this.whole = whole;
     this.label.textContent = visibleText(label);
+    this.drawSourceLabel();
     this.element.dataset.mode = live ? 'live' : 'replay';
     this.setPlaying(false);
     this.setFollow(true);
@@ -195,6 +199,20 @@ export class MonitorPanel {
   setSources(options: SourceOption[], selected: string | undefined): void {
     this.sourceSelect.replaceChildren(h('option', { value: '', disabled: true, selected: !selected }, options.length ? 'Choose a run…' : 'No run yet'),
       ...options.map((o) => runListOption(o, o.id === selected)));
+    this.drawSourceLabel();
+  }
+
+  /**
+   * The run list's tooltip is the chosen run's whole label (the list is as wide as that label, up to
+   * the pane: monitor.css); the label beside the list is shown only when it says something the
+   * chosen entry does not (`Reading …`, a label the entry has not caught up with yet).
+   */
+  private drawSourceLabel(): void {
+    const chosen = this.sourceSelect.selectedOptions[0];
+    const whole = chosen?.value ? (chosen.getAttribute('aria-label') ?? chosen.textContent ?? '') : '';
+    const title = whole || RUN_LIST_TITLE;
+    if (this.sourceSelect.title !== title) this.sourceSelect.title = title;
+    this.label.hidden = whole !== '' && this.label.textContent === whole;
   }
 
   get current(): MonitorView | undefined {
@@ -204,6 +222,7 @@ export class MonitorPanel {
   /** The label of the run shown (what it is, and what it lacks). */
   setLabel(label: string): void {
     this.label.textContent = visibleText(label);
+    this.drawSourceLabel();
   }
 
   /** The live source ended (the model stays, as a recorded run); `whole`: its records are known to run to the run's end (setModel). */
@@ -211,6 +230,7 @@ export class MonitorPanel {
     this.live = false;
     if (whole !== undefined) this.whole = whole;
     this.label.textContent = visibleText(label);
+    this.drawSourceLabel();
     this.element.dataset.mode = 'replay';
     this.drawFollow();
     // the readout stops saying live now, not at the next frame: with a large run that frame can
@@ -652,6 +672,9 @@ export function modulesText(running: string[], noExit: string[], crashed: string
   if (!noExit.length) return now;
   return `${now} · no exit record: ${noExit.sort().join(', ')} (crashed, killed, or ended by its code's exit(): the run's messages say which)`;
 }
+
+/** The run list's tooltip while no run is chosen. */
+const RUN_LIST_TITLE = 'Run to show: the live run, a finished job\'s CSV logs, or CSV logs of the workspace';
 
 /** An entry of the run list longer than this is ended at a word with `…` (a failed job's message can be hundreds of characters). */
 export const RUN_LIST_CHARS = 240;
