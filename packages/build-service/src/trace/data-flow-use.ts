@@ -15,6 +15,11 @@
  * FLOWS_FOLLOWED flows, a few numbers each. The event flows a supervisor connects (an event
  * schema's `A:p =* B:i`) are told by the same rules, with who connected them (supervisor-flow-use.ts).
  *
+ * A simulation's trace (its `sim_start`: simulated()) tells none of them: a simulation runs no
+ * module code, so its virtual modules read no data (no `data_received`) and post no event (no
+ * `event_posted`; the events a scenario brings are no module's post), and every flow would look
+ * silent. One line says so instead, with the flows that would have been told (SIMULATED_FLOWS_WHY).
+ *
  * A record's time is read (a BigInt) only where it is needed: at a connect or a disconnect, and at
  * the end for a flow still connected. Every other record only moves the run's end so far, kept as
  * its digits (compared as text: a live Monitor feeds every line here, and a BigInt per line cost
@@ -31,6 +36,8 @@ export const SILENT_FLOW_MIN_NS = 1_000_000_000;
 export const SPARSE_FLOW_RATIO = 10;
 /** Flows followed at most (a forged log naming a million flows does not grow the story's memory). */
 const FLOWS_FOLLOWED = 4096;
+/** What a simulation's trace says instead of its flows' findings (simulated()). */
+export const SIMULATED_FLOWS_WHY = 'a simulation runs no module code: data values are not simulated, nor the events its modules post';
 /** Schemas named for one flow at most. */
 const SCHEMAS_NAMED = 4;
 
@@ -72,6 +79,13 @@ export class DataFlowUse {
     private lastMono: string | undefined;
     /** The event flows supervisors connected. */
     private readonly bySupervisors = new SupervisorFlowUse();
+    /** The records are a simulation's (its `sim_start`): no flow's use is told (module code never ran). */
+    private simulation = false;
+
+    /** The records are a simulation's: what its flows delivered is not told as a finding (lines, counts). */
+    simulated(): void {
+        this.simulation = true;
+    }
 
     /** Follows one record (any kind: its time is the run's end so far). */
     see(k: KnownRecord): void {
@@ -158,6 +172,12 @@ export class DataFlowUse {
 
     /** Flows that delivered nothing, and flows far sparser than their reader: the line of counts. */
     get counts(): { silent: number; sparse: number; silentEvents: number } {
+        if (this.simulation) return { silent: 0, sparse: 0, silentEvents: 0 };
+        return this.foundCounts();
+    }
+
+    /** The flows the findings would tell, a simulation's too. */
+    private foundCounts(): { silent: number; sparse: number; silentEvents: number } {
         let silent = 0, sparse = 0, silentEvents = 0;
         for (const f of this.flows.values()) {
             if (this.silent(f)) silent++;
@@ -169,6 +189,7 @@ export class DataFlowUse {
 
     /** One line per data flow told (silent, then sparse), in flow order, at the story's end. */
     lines(): string[] {
+        if (this.simulation) return this.simulatedLines();
         const out: string[] = [];
         for (const [name, f] of [...this.flows].sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0))) {
             const ns = this.connectedNs(f);
@@ -187,6 +208,19 @@ export class DataFlowUse {
             }
         }
         return [...out, ...this.eventLines()];
+    }
+
+    /**
+     * A simulation's: no finding, but, when there would be some, one line saying why none is made:
+     * `a simulation runs no module code: data values are not simulated, nor the events its modules
+     * post: what 2 data flows and 1 event flow connected over 1 s delivered is not told`.
+     */
+    private simulatedLines(): string[] {
+        const { silent, sparse, silentEvents } = this.foundCounts();
+        const data = silent + sparse;
+        if (!data && !silentEvents) return [];
+        const flows = [...(data ? [plural(data, 'data flow')] : []), ...(silentEvents ? [plural(silentEvents, 'event flow')] : [])].join(' and ');
+        return [`${SIMULATED_FLOWS_WHY}: what ${flows} connected over ${durationText(SILENT_FLOW_MIN_NS)} delivered is not told`];
     }
 
     /** One line per event flow a supervisor connected that delivered nothing, in flow order. */

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { CSV_HEADER, parseRecordLine, parseTrace, renderStory, type KnownRecord } from './index.js';
+import { CSV_HEADER, parseRecordLine, parseTrace, renderStory, StoryTeller, type KnownRecord } from './index.js';
 
 /** The story of a run's logs: each log's records (without their line ends) after the CSV header. */
 const storyOf = (logs: Record<string, string[]>): string[] =>
@@ -37,6 +37,16 @@ describe('a data flow ORD connected that delivered nothing', () => {
         const { EST } = delivered([20, 30, 40]);
         const story = storyOf({ 'ORD_1.csv': ordLog(2000), 'EST_1.csv': EST });
         expect(story).toContain('data flow EST:1 -> CTL:0 connected for 1.999 s (schema altHold): 3 values posted, none read (CTL never read its input :0: GetData or GetLatestData, in its 199 releases)');
+    });
+
+    it("is not told of a simulation (its modules run no code): one line says why, the counts name no silent flow", () => {
+        const { EST } = delivered([20, 30, 40]);
+        const records = parseTrace([{ name: 'ORD_1.csv', text: [CSV_HEADER, ...ordLog(2000), ''].join('\n') }, { name: 'EST_1.csv', text: [CSV_HEADER, ...EST, ''].join('\n') }]);
+        const teller = new StoryTeller();
+        teller.simulation();
+        for (const r of records) teller.tell(r);
+        expect(teller.flowLines()).toEqual(['a simulation runs no module code: data values are not simulated, nor the events its modules post: what 1 data flow connected over 1 s delivered is not told']);
+        expect(teller.summary()).not.toContain('data flow');
     });
 
     it('is not told when connected less than 1 s in all, nor when it delivered about once a release', () => {

@@ -18,7 +18,7 @@ export { LAUNCHER_LINE_KIND, launcherLineJson, launcherLineOfJson, isLauncherLin
 export type { EventHandlingFigures } from './event-handling.js';
 export { DurationQuantiles } from './duration-quantiles.js';
 export { renderStory, StoryTeller, CUT_RECORD, crashText, unheardEventText, type SchemaFigures, type NamedSchemaFigures, dataDropReason, userRecordText, keptRequestsText, askedToStopText, holdText, ownRunEndText, readableCause, missWaitText, missCriticalDelayNs, earlyFinish, sinceTickText, type EarlyAck, type EarlyFinish, priorityText, LATE_RELEASE_SHARE, stuckSaysGone, ignoredUndo, LATE_RELEASE_NS, STORY_FOLLOWED } from './story.js';
-export { DataFlowUse, SILENT_FLOW_MIN_NS, SPARSE_FLOW_RATIO } from './data-flow-use.js';
+export { DataFlowUse, SILENT_FLOW_MIN_NS, SIMULATED_FLOWS_WHY, SPARSE_FLOW_RATIO } from './data-flow-use.js';
 export { SupervisorFlowUse } from './supervisor-flow-use.js';
 export { EventWaits, flowWaitsLine, waitTotalsText, type FlowWaitTotals } from './event-waits.js';
 export { UnmatchedEvents, changedNoRule, receivedValue } from './unmatched-events.js';

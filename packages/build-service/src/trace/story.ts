@@ -469,6 +469,15 @@ export class StoryTeller {
     }
 
     /**
+     * The records told are a simulation's (a trace file's `sim_start`): its virtual modules run no
+     * code, so the flows' use (data values read, events modules post) is not told as findings of
+     * module code (data-flow-use.ts: one line says why).
+     */
+    simulation(): void {
+        this.dataFlows.simulated();
+    }
+
+    /**
      * One of the launcher's own end lines of the logs folder (contract-launch.log), handed in before
      * the first record after its time (LauncherLinesQueue): the module it says ended on its own, told
      * at its last record with the line as the evidence (EndedMidRun.launcherLine); undefined when the

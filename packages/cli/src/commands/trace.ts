@@ -118,6 +118,7 @@ async function traceFile(path: string, arg: string, format: string, io: CliIO): 
                         story = new Story(new ModuleEnds([], arg));
                     }
                     piece += `--- ${safeName((r as TraceRecordBase).detail)}\n`;
+                    story.simulation(); // its modules ran no code: no flow finding blames it
                 } else piece += story.line(r);
             }
             if (!(await print(io, piece))) return EXIT_OK;
@@ -204,6 +205,11 @@ class Story {
     /** The records told (readable ones) and, apart, the unreadable lines: what the line of counts says. */
     get counts(): RecordCounts {
         return this.teller.recordCounts;
+    }
+
+    /** The records are a simulation's (its `sim_start`): StoryTeller.simulation. */
+    simulation(): void {
+        this.teller.simulation();
     }
 
     /** The record's line of the story ('' when it tells nothing), after those of the launcher's lines said before its time. */

@@ -39,6 +39,15 @@ export class FlowFindings {
     return this.waits.see(k);
   }
 
+  /**
+   * The records are a simulation's: its modules ran no code, so the data flows and the event flows
+   * supervisors connected are not told as having delivered nothing (DataFlowUse.simulated: one line
+   * says why instead, shown without ⚠).
+   */
+  simulated(): void {
+    this.use.simulated();
+  }
+
   /** The line text[from, to) that scanLine accepted and the model reads in place (`scanned` holds its commas, time and kind). */
   seeScanned(text: string, from: number, to: number): void {
     const c = scanned.comma, v = this.view, kind = scanned.kind;

@@ -505,7 +505,8 @@ export class MonitorController {
     if (asked) await this.reading(`trace file ${path}`);
     const { files, problems, skipped, unreadable, simulation, order, tooLarge, launcherLines } = await readTraceFile(path, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
     // in the file's order, as `contract trace FILE` tells it (a simulation's records of one time: causes first)
-    const { model, leftOut: unread } = await recordedRun(files, order);
+    // a simulation's (its sim_start): its modules ran no code, no flow is told silent
+    const { model, leftOut: unread } = await recordedRun(files, order, true, simulation !== undefined);
     // the launcher's end lines the file holds (`launcher_line`, written by `contract run --trace`): a
     // module killed from outside shown gone at its end, as a logs folder's (its pid the module's own)
     applyFolderLauncherLines(model, launcherLines);
@@ -720,8 +721,8 @@ export class MonitorController {
  * page's other work between them: a 60 s run of a 1 kHz schema is some 840,000 records, a second
  * or more of folding, during which the page would not draw nor answer a key.
  */
-function recordedRun(files: readonly LogFile[], fileOrder?: Uint16Array, whole = true): Promise<RecordedRun> {
-  return runSliced(recordedRunSteps(files, 500, undefined, undefined, fileOrder, whole));
+function recordedRun(files: readonly LogFile[], fileOrder?: Uint16Array, whole = true, simulation = false): Promise<RecordedRun> {
+  return runSliced(recordedRunSteps(files, 500, simulation ? { simulation } : undefined, undefined, fileOrder, whole));
 }
 
 function dirOf(path: string): string {

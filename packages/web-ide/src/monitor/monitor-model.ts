@@ -34,6 +34,12 @@ export interface MonitorModelOptions {
   checkpointEvery?: number;
   keepRecords?: number;
   maxMarks?: number;
+  /**
+   * The records are a simulation's (a trace file headed by `sim_start`, which its reader skips):
+   * its modules ran no code, so no flow is told as having delivered nothing (FlowFindings.simulated).
+   * A `sim_start` record pushed says the same.
+   */
+  simulation?: boolean;
 }
 
 /** Texts a chunk looks back through for the one a record's line is in. */
@@ -359,7 +365,7 @@ export class MonitorModel implements MonitorView {
     this.keep = Math.max(this.every * 2, opts.keepRecords ?? 200_000);
     this.maxMarks = opts.maxMarks ?? 20_000;
     this.checkpoints.push({ index: 0, t: 0, state: emptyState() });
-    this.chunks.push(new Chunk(this.every));
+    this.chunks.push(new Chunk(this.every));    if (opts.simulation) this.flows.simulated();
   }
 
   get recordCount(): number {
@@ -526,6 +532,8 @@ export class MonitorModel implements MonitorView {
 
   /** A parsed record (kept as it is). */
   push(r: TraceRecord): void {
+    // a simulation's trace (stepsToTrace) starts with it: its modules ran no code (FlowFindings.simulated)
+    if (r.kind === 'sim_start') this.flows.simulated();
     const t = this.timeOfRecord(r);
     this.beforeKeep();
     this.chunks[this.chunks.length - 1]!.push(t, r);

@@ -3,7 +3,7 @@
  * readout, the follow button, a rule's row (its cause, accessible name and tooltip). Kept apart so that they are tested
  * without a page (panel-text.test.ts).
  */
-import { durationText, flowWaitsLine, priorityText, readableCause, waitTotalsText, type FlowWaitTotals } from '@contract-studio/build-service/trace';
+import { durationText, flowWaitsLine, priorityText, readableCause, SIMULATED_FLOWS_WHY, waitTotalsText, type FlowWaitTotals } from '@contract-studio/build-service/trace';
 import { MAX_NAMES, quantileBoundNs, type FlowCount, type KeptRequests, type ModuleState, type PeriodicState, type RuleState } from './monitor-state.js';
 
 /** `+2.010325 s`: a time of the run (ns since its first record). */
@@ -137,10 +137,12 @@ export function flowValueText(f: FlowCount): string {
 /**
  * The Deliveries row of a connected data flow that delivered nothing or far less than read, told
  * once the records are over: `━ ⚠ data flow SRT:1 -> BLT:0 connected for 5.834 s (schema sortLoop): 0
- * values delivered (SRT posted none on its output :1); BLT read nothing in its 892 releases`.
+ * values delivered (SRT posted none on its output :1); BLT read nothing in its 892 releases`; a
+ * simulation's line saying why none is told (its modules ran no code) without ⚠.
  */
 export function quietDataFlowRow(line: string): string {
-  return `━ ⚠ ${line}`;
+  // a simulation's line says why its flows are not told (its modules ran no code): no warning
+  return line.startsWith(SIMULATED_FLOWS_WHY) ? `━ ${line}` : `━ ⚠ ${line}`;
 }
 
 /**
