@@ -24,7 +24,7 @@ import { MarksStrip, markTooltip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { unheardEventText } from '@contract-studio/build-service/trace';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
-import { NOT_IN_MODEL, crashedModulesText, notReleasedText, schedulingText, flowDropText, flowValueText, flowWaitText, flowWaitTitle, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, lateReleasesText, ruleTexts, quietDataFlowRow, timeReadout, unheardEventsRow } from './panel-text.js';
+import { NOT_IN_MODEL, crashedModulesText, notReleasedText, schedulingText, flowDropText, flowValueText, flowWaitText, flowWaitTitle, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, lateReleasesText, ruleTexts, quietDataFlowRow, isSimulatedFlowsLine, timeReadout, unheardEventsRow } from './panel-text.js';
 import { visibleText } from '@contract-studio/conventions';
 import { shortAtWord } from '../util/short-text.js';
 
@@ -641,7 +641,7 @@ export class MonitorPanel {
     });
     // the connected data flows that delivered nothing or far less than read, once the records are over (trace's words)
     const quiet = (this.model?.live ?? s).quietDataFlows.slice(0, 12 - unheard.length).map((line) => {
-      const el = this.row(`quiet:${line}`, () => h('div', { class: 'monitor-flow data quiet', title: line }));
+      const el = this.row(`quiet:${line}`, () => h('div', { class: `monitor-flow data quiet${isSimulatedFlowsLine(line) ? ' simulated' : ''}`, title: line }));
       setText(el, quietDataFlowRow(line));
       return el;
     });

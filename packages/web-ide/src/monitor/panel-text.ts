@@ -141,8 +141,12 @@ export function flowValueText(f: FlowCount): string {
  * simulation's line saying why none is told (its modules ran no code) without ⚠.
  */
 export function quietDataFlowRow(line: string): string {
-  // a simulation's line says why its flows are not told (its modules ran no code): no warning
-  return line.startsWith(SIMULATED_FLOWS_WHY) ? `━ ${line}` : `━ ⚠ ${line}`;
+  return isSimulatedFlowsLine(line) ? `━ ${line}` : `━ ⚠ ${line}`;
+}
+
+/** Whether a line of the flows' findings is a simulation's saying why its flows are not told (its modules ran no code): no warning. */
+export function isSimulatedFlowsLine(line: string): boolean {
+  return line.startsWith(SIMULATED_FLOWS_WHY);
 }
 
 /**
