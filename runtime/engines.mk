@@ -11,7 +11,7 @@ ENG_SAN     := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitiz
 ENG_OUT     := $(BUILD)/engines
 ENG_CORE    := src/engines/engine_values.c src/engines/value_ops.c src/engines/engine_check.c src/engines/sup_core.c src/engines/sup_claims.c \
                src/engines/ord_core.c src/engines/ord_stuck_cause.c
-ENG_HDRS    := $(wildcard include/contract/*.h src/engines/*.h tests/engines/*.h tests/engines/*.def sim/*.h)
+ENG_HDRS    := $(wildcard include/contract/*.h src/engines/*.h tests/engines/*.h tests/engines/*.def sim/*.h) tests/test_select.h
 ENG_TESTS   := $(wildcard tests/engines/*.c)
 # libmodule-free parts of the bindings, tested with the cores
 ENG_UNITS   := src/engines/hold_lock.c
@@ -28,12 +28,21 @@ $(ENG_OUT)/engine-tests-san: $(ENG_CORE) $(ENG_UNITS) $(ENG_TESTS) $(ENG_HDRS)
 	@mkdir -p $(ENG_OUT)
 	$(ENG_CC) $(ENG_WARN) -O1 -g $(ENG_SAN) $(ENG_INC) $(ENG_CORE) $(ENG_UNITS) $(ENG_TESTS) -o $@
 
+# T='word ...' runs only the core tests whose names contain one of the words (`test_` optional;
+# a word that names none fails, with the near names; T=--list lists them) and not the
+# integration test (ITEST_ONLY=... make -C runtime test-engines-integration runs its scenarios)
 test-engines: $(ENG_OUT)/engine-tests $(ENG_OUT)/engine-tests-san
 	@echo "== engine core tests"
-	@$(ENG_OUT)/engine-tests
+	@$(ENG_OUT)/engine-tests $(T)
+ifeq ($(filter --list,$(T)),)
 	@echo "== engine core tests (ASan+UBSan)"
-	@$(ENG_OUT)/engine-tests-san
+	@$(ENG_OUT)/engine-tests-san $(T)
+endif
+ifeq ($(strip $(T)),)
 	@$(MAKE) --no-print-directory test-engines-integration
+else
+	@echo "(T=$(T): the integration test is not run; ITEST_ONLY=name make -C runtime test-engines-integration runs its scenarios)"
+endif
 
 # ---- integration test: real processes through libmodule (needs the runtime Makefile's
 # $(BUILD)/libmodule.a, $(BUILD)/san/libmodule.a and $(BUILD)/contract-launch) ----

@@ -1,5 +1,7 @@
 /* Test runner: runs every registered test (or those named on the command line after the
- * binary directory), prints one line per test and "N passed, N failed". */
+ * binary directory, with or without the `test_` prefix of their C function), prints one line per
+ * test and "N passed, N failed". A name that is no test's fails the run before any test runs
+ * (exit 2, with the names near it); `--list` prints every name. */
 #define _GNU_SOURCE
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,8 +11,35 @@
 #include <unistd.h>
 #include "harness.h"
 #include "tests.h"
+#include "test_select.h"
 
 static const char *current = "";
+
+#define LIST_HOW "make -C runtime test-c T=--list (tests/tests.h, ALL_TESTS)"
+
+/* is the test `name` among the names given (none given: every test) */
+static int wanted(const char *name, int argc, char *argv[])
+{
+    if (argc <= 2) return 1;
+    for (int i = 2; i < argc; i++)
+        if (ts_chooses(argv[i], name, 1)) return 1;
+    return 0;
+}
+
+/* every given name chooses a test, else says which does not (0) */
+static int names_known(int argc, char *argv[])
+{
+    static const char *names[sizeof ALL_TESTS / sizeof ALL_TESTS[0]];
+    size_t n = 0;
+    for (const TestCase *t = ALL_TESTS; t->name; t++) names[n++] = t->name;
+    int ok = 1;
+    for (int i = 2; i < argc; i++) {
+        int found = 0;
+        for (size_t k = 0; k < n; k++) found |= ts_chooses(argv[i], names[k], 1);
+        if (!found) { ts_say_unknown(argv[i], names, n, LIST_HOW); ok = 0; }
+    }
+    return ok;
+}
 
 static void on_timeout(int sig)
 {
@@ -27,17 +56,19 @@ static void on_timeout(int sig)
 int main(int argc, char *argv[])
 {
     signal(SIGALRM, on_timeout);
-    if (argc < 2) { fprintf(stderr, "usage: %s BIN_DIR [TEST...]\n", argv[0]); return 2; }
+    for (int i = 1; i < argc; i++)
+        if (strcmp(argv[i], "--list") == 0) {
+            for (const TestCase *t = ALL_TESTS; t->name; t++) printf("%s\n", t->name);
+            return 0;
+        }
+    if (argc < 2) { fprintf(stderr, "usage: %s BIN_DIR [TEST...] | --list\n", argv[0]); return 2; }
+    if (!names_known(argc, argv)) return 2;
     static char bin[4096];
     if (!realpath(argv[1], bin)) { perror(argv[1]); return 2; }
     h_bin_dir = bin;
     int passed = 0, failed = 0;
     for (const TestCase *t = ALL_TESTS; t->name; t++) {
-        if (argc > 2) {
-            int wanted = 0;
-            for (int i = 2; i < argc; i++) wanted |= strcmp(argv[i], t->name) == 0;
-            if (!wanted) continue;
-        }
+        if (!wanted(t->name, argc, argv)) continue;
         h_failures = 0;
         struct timespec a, b;
         clock_gettime(CLOCK_MONOTONIC, &a);

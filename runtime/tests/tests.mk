@@ -44,7 +44,7 @@ TEST_BINS = P C1 C2 ECHO controlECHO MSC MAA controlMSC contract-launch runner
 $(eval $(call TEST_SET,$(BUILD)/tests,$(BUILD)/libmodule.a,,$(BUILD)/contract-launch))
 $(eval $(call TEST_SET,$(BUILD)/san/tests,$(BUILD)/san/libmodule.a,$(SANFLAGS),$(BUILD)/san/contract-launch))
 
-.PHONY: test-c test-san test-build
+.PHONY: test-c test-san test-build test-names
 test-build: $(addprefix $(BUILD)/tests/,$(TEST_BINS)) $(addprefix $(BUILD)/san/tests/,$(TEST_BINS))
 
 test-c: $(addprefix $(BUILD)/tests/,$(TEST_BINS))
@@ -56,5 +56,10 @@ test-san: $(addprefix $(BUILD)/san/tests/,$(TEST_BINS))
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  $(BUILD)/san/tests/runner $(BUILD)/san/tests $(T)
 
+# the runners' choice of tests by name (T=...): a name that chooses none fails (check_test_names.sh)
+test-names: $(BUILD)/tests/runner $(BUILD)/tests/P $(BUILD)/engines/engine-tests
+	@echo "== choosing tests by name"
+	@bash tests/check_test_names.sh $(BUILD)/tests/runner $(BUILD)/tests $(BUILD)/engines/engine-tests
+
 test: all test-c test-san
-	@if [ -f engines.mk ]; then $(MAKE) --no-print-directory test-engines; fi
+	@if [ -f engines.mk ]; then $(MAKE) --no-print-directory test-engines test-names; fi

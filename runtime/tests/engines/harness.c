@@ -1,5 +1,6 @@
 /* harness.c — see harness.h; also main(): runs every test of tests.def, prints the counts. */
 #include "harness.h"
+#include "../test_select.h"
 
 #include <stdarg.h>
 #include <string.h>
@@ -68,10 +69,37 @@ static const TestCase TESTS[] = {
 #undef TEST
 };
 
+/* is the test `name` chosen by one of the words given (none given: every test) */
+static int chosen(const char *name, int argc, char **argv) {
+    if (argc <= 1) return 1;
+    for (int i = 1; i < argc; i++)
+        if (ts_chooses(argv[i], name, 0)) return 1;
+    return 0;
+}
+
+#define NTESTS (sizeof TESTS / sizeof TESTS[0])
+#define LIST_HOW "make -C runtime test-engines T=--list (tests/engines/tests.def)"
+
+/* Runs the tests whose names contain one of the words given (every test without any; `test_`
+ * prefix optional); a word that chooses no test fails the run before any test runs (exit 2, with
+ * the names near it); `--list` prints every name. */
 int main(int argc, char **argv) {
+    const char *names[NTESTS];
+    for (size_t i = 0; i < NTESTS; i++) names[i] = TESTS[i].name;
+    int known = 1;
+    for (int a = 1; a < argc; a++) {
+        if (strcmp(argv[a], "--list") == 0) {
+            for (size_t i = 0; i < NTESTS; i++) printf("%s\n", names[i]);
+            return 0;
+        }
+        int found = 0;
+        for (size_t i = 0; i < NTESTS; i++) found |= ts_chooses(argv[a], names[i], 0);
+        if (!found) { ts_say_unknown(argv[a], names, NTESTS, LIST_HOW); known = 0; }
+    }
+    if (!known) return 2;
     int passed = 0, failed = 0;
-    for (size_t i = 0; i < sizeof TESTS / sizeof TESTS[0]; i++) {
-        if (argc > 1 && !strstr(TESTS[i].name, argv[1])) continue;
+    for (size_t i = 0; i < NTESTS; i++) {
+        if (!chosen(TESTS[i].name, argc, argv)) continue;
         th_current_failed = 0;
         TESTS[i].fn();
         if (th_current_failed) {
