@@ -65,3 +65,18 @@ export function wordValueIn(s: string, key: string, from = 0, to = s.length): nu
     }
     return -1;
 }
+
+/**
+ * True when `word` is one of the space-separated words of the detail s[from, to): what a reader
+ * tests rather than the detail's first or last word, so that a `key=value` field or a word the
+ * runtime adds later, anywhere, does not change what it concludes.
+ */
+export function hasWordIn(s: string, word: string, from = 0, to = s.length): boolean {
+    const n = word.length;
+    for (let at = from; at < to;) {
+        const end = spaceIn(s, at, to);
+        if (end - at === n && s.startsWith(word, at)) return true;
+        at = end + 1;
+    }
+    return false;
+}

@@ -7,7 +7,7 @@ export { TRACE_KINDS, traceKind, isUserEventName, type TraceKind, type TraceArea
 export { parseTrace, parseLogFile, parseRecordLine, recordOfLine, unendedLine, recordLineEnd, parseCause, ownString, moduleOfLog, moduleNamedByLog, isLogFileName, twinLogs, TWIN_LOGS_WHY, foreignRecordReason, CSV_HEADER, MAX_LINE_CHARS, type LogFile } from './parse.js';
 export { splitCsvLine, csvField } from './csv-line.js';
 export { traceFileToLogs, traceFileToLogsSteps, recordOfJsonLine, traceFileItemOfJsonLine, jsonLineToCsv, MAX_JSON_LINE_CHARS, MAX_TRACE_FILE_MODULES, type TraceFileLogs, type JsonLineRead } from './jsonl.js';
-export { isDigitsIn, isModuleNameIn, isPlainIntegerIn, spaceIn, wordValueIn } from './field-checks.js';
+export { isDigitsIn, isModuleNameIn, isPlainIntegerIn, spaceIn, wordValueIn, hasWordIn } from './field-checks.js';
 export { schedulerLineFields } from './text-lines.js';
 export { skippedReleasesOf, overrunningAfter, missedTicksOf } from './ord-counts.js';
 export { durationText } from './duration-text.js';

@@ -8,6 +8,7 @@
 import { posingText } from './log-clock.js';
 import { formatNanoseconds, STUCK_ADVICE, withCrashMeaning } from '@contract-studio/conventions';
 import { ownString, parseCause } from './parse.js';
+import { hasWordIn, isDigitsIn, wordValueIn } from './field-checks.js';
 import { confirmingHold, type ConfirmingHold } from './action-holds.js';
 import { missedTicksOf, skippedReleasesOf } from './ord-counts.js';
 import { durationText } from './duration-text.js';
@@ -85,7 +86,7 @@ export function unheardEventText(port: string): string {
  * without it (`meaning` false) where the crash is recalled later (`it had exited before (crashed: signal 11 (SIGSEGV))`).
  */
 export function crashText(detail: string, meaning = true): string {
-    const told = `crashed: ${detail.replace(/ records=\d+$/, '')}`;
+    const told = `crashed: ${detail.split(' ').filter((w) => !/^records=\d+$/.test(w)).join(' ')}`;
     return meaning ? withCrashMeaning(told) : told;
 }
 
@@ -331,16 +332,30 @@ function offset(ns: bigint): string {
  * grow with the logs. The names kept are copies (ownString), never the lines they were read from.
  */
 export const STORY_FOLLOWED = 4096;
-/** A run_finished that no STOP, KILL or ack ended: the module's code returned (libmodule's WaitForRequest). */
-const RUN_RETURNED = /^activation=(\d+)$/;
+/**
+ * The words of a run_finished detail (`activation=N [ACK_FINISHED|ACK_STOPPED|STOP|KILL]`) that say
+ * what ended the run: without any, the module's code returned (libmodule's WaitForRequest). Read
+ * as words, not as the detail's last one: a field added to the record does not change the reading.
+ */
+const RUN_END_WORDS = ['ACK_FINISHED', 'ACK_STOPPED', 'STOP', 'KILL'] as const;
+
+/** The activation number of a run_finished detail that no STOP, KILL or ack ended, else undefined. */
+function ownRunActivation(detail: string): string | undefined {
+    const from = wordValueIn(detail, 'activation');
+    if (from < 0) return undefined;
+    const space = detail.indexOf(' ', from);
+    const to = space < 0 ? detail.length : space;
+    if (!isDigitsIn(detail, 1, 19, from, to) || RUN_END_WORDS.some((w) => hasWordIn(detail, w))) return undefined;
+    return detail.slice(from, to);
+}
 
 /**
  * `run #N ended by its own code` for the detail of a run_finished that no STOP, KILL or ack ended,
  * else undefined: the words of the story and of `simulate --verbose` (a scenario's `finish`).
  */
 export function ownRunEndText(detail: string): string | undefined {
-    const run = RUN_RETURNED.exec(detail);
-    return run ? `run #${run[1]} ended by its own code` : undefined;
+    const run = ownRunActivation(detail);
+    return run === undefined ? undefined : `run #${run} ended by its own code`;
 }
 const RUNNING_FOLLOWED = 65_536;
 
@@ -743,12 +758,12 @@ export class StoryTeller {
         if (!c || !c.running.has(k.module) || c.tickNs === undefined) return;
         let how: EarlyAck['how'];
         if (k.kind === 'ack_sent') {
-            if (k.peer !== 'ORD' || !k.detail.startsWith('ACK_FINISHED')) return;
+            if (k.peer !== 'ORD' || !hasWordIn(k.detail, 'ACK_FINISHED')) return;
             const id = k.fields['id'], released = c.releases?.get(k.module);
             if (released && id !== undefined && String(id) !== released) return; // an ack of another release
             how = 'its ack sent';
         } else {
-            if (!/ ACK_FINISHED$/.test(k.detail) || c.acks?.has(k.module)) return;
+            if (!hasWordIn(k.detail, 'ACK_FINISHED') || c.acks?.has(k.module)) return;
             how = 'its run finished';
         }
         (c.acks ??= new Map()).set(k.module, { module: k.module, sinceTickNs: Number(k.monoNs) - c.tickNs, how });

@@ -21,7 +21,7 @@
  * Memory per record is therefore bounded by keepRecords, not by the run's length (a 1 kHz schema
  * for 60 s is about 1.5 million records).
  */
-import { LogClocks, UndosToOrd, type UnservedUndos, parseRecordLine, isRule, askedToStopText, crashText, unheardEventText, ignoredUndo, keptRequestsText, missCriticalDelayNs, missWaitText, earlyFinish, type EarlyAck, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { LogClocks, UndosToOrd, type UnservedUndos, parseRecordLine, isRule, askedToStopText, crashText, unheardEventText, ignoredUndo, keptRequestsText, missCriticalDelayNs, missWaitText, earlyFinish, type EarlyAck, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord, hasWordIn } from '@contract-studio/build-service/trace';
 import { FOLDED_KINDS, applyRecord, endOrdSchemas, foldGone, applyUnfolded, isUnheardEvent, unheardPort } from './apply-record.js';
 import { nameIn, scanLine, scanned } from './line-scan.js';
 import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
@@ -695,8 +695,8 @@ export class MonitorModel implements MonitorView {
     const c = scanned.comma;
     const detail = c[6]! + 1;
     if (how === 'its ack sent'
-      ? !(c[4]! - c[3]! === 4 && text.startsWith('ORD', c[3]! + 1) && text.startsWith('ACK_FINISHED', detail))
-      : !text.startsWith(' ACK_FINISHED', to - 13)) return;
+      ? !(c[4]! - c[3]! === 4 && text.startsWith('ORD', c[3]! + 1) && hasWordIn(text, 'ACK_FINISHED', detail, to))
+      : !hasWordIn(text, 'ACK_FINISHED', detail, to)) return;
     this.followAck(nameIn(text, c[1]! + 1, c[2]!), t, how);
   }
 
@@ -795,7 +795,7 @@ export class MonitorModel implements MonitorView {
 
   /** A parsed `ack_sent` (ACK_FINISHED to ORD) or `run_finished` (with ACK_FINISHED): followAck. */
   private followParsedAck(k: KnownRecord, t: Ns): void {
-    if (k.kind === 'ack_sent' ? k.peer === 'ORD' && k.detail.startsWith('ACK_FINISHED') : / ACK_FINISHED$/.test(k.detail)) {
+    if ((k.kind !== 'ack_sent' || k.peer === 'ORD') && hasWordIn(k.detail, 'ACK_FINISHED')) {
       this.followAck(k.module, t, k.kind === 'ack_sent' ? 'its ack sent' : 'its run finished');
     }
   }
