@@ -46,14 +46,17 @@ function run(cmd, args, opts = {}, echo = true) {
 
 /**
  * Starts dockerd when none answers (scripts/docker-up.sh --daemon; the image is left to the docker
- * tests, which build it when missing): the pid of the daemon it started, else undefined (one was
- * running, or Docker cannot run here: the docker tests then say why and are skipped).
+ * tests, which build it when missing) and holds a lease on the engine for the whole run (the
+ * docker test files' own leases, released at their end, then never stop it under the other
+ * lanes): the lease to release at the end (which stops the daemon when docker-up started it and
+ * no one else holds it), else undefined (Docker cannot run here: the docker tests then say why
+ * and are skipped).
  */
 async function startDockerd() {
-  const r = await run('bash', ['scripts/docker-up.sh', '--daemon'], {}, false);
-  const pid = /dockerd-started (\d+)/.exec(r.out)?.[1];
+  const lease = `${process.pid}-run`;
+  const r = await run('bash', ['scripts/docker-up.sh', '--daemon', '--lease', lease], {}, false);
   if (r.code !== 0) console.log(`(no Docker engine for the run: ${r.out.trim().split('\n').slice(-1)[0]})`);
-  return pid;
+  return r.code === 0 ? lease : undefined;
 }
 
 /** Sums every `N passed, N failed` line a C runner printed. */
@@ -239,9 +242,8 @@ const timed = async (s, echo) => {
   return r && { ...r, seconds: (Date.now() - start) / 1000 };
 };
 // one Docker engine for the whole run, started here when none answers and stopped at the end: the
-// docker test files of the lanes then find it running and leave it alone (each file stops only a
-// daemon it started itself, which would pull it from under another lane)
-const dockerd = chosen.some((s) => !s.beside) ? await startDockerd() : undefined;
+// run's lease keeps it up while the docker test files of the lanes take and release theirs
+const dockerLease = chosen.some((s) => !s.beside) ? await startDockerd() : undefined;
 const background = Promise.all(together.map((s) => timed(s, false)));
 if (together.length) {
   console.log(`\n=== in the background, niced: ${together.map((s) => s.name.replace(/ \(.*$/, '')).join(', ')} ===`);
@@ -265,7 +267,7 @@ const printKept = (list, results, how) => list.forEach((s, i) => {
 });
 for (const [i, lane] of otherLanes.entries()) printKept(lane, await otherLanesDone[i], `ran in lane ${i + 2}`);
 if (together.length) printKept(together, await background, 'ran in the background');
-if (dockerd) await run('bash', ['scripts/docker-up.sh', '--stop', dockerd], {}, false);
+if (dockerLease) await run('bash', ['scripts/docker-up.sh', '--release', dockerLease], {}, false);
 const slowest = fileTimes.sort((a, b) => b.s - a.s).slice(0, 10);
 if (slowest.length) console.log(`\n=== slowest test files ===\n${slowest.map((f) => `${f.s.toFixed(0).padStart(5)} s  ${f.file}`).join('\n')}`);
 console.log(`=== all suites: ${((Date.now() - t0) / 1000).toFixed(0)} s ===`);

@@ -28,6 +28,33 @@ export function ensureFrontendBuilt(): void {
   if (stale) execFileSync(process.execPath, [join(pkg, '../../node_modules/vite/bin/vite.js'), 'build', '--logLevel', 'warn'], { cwd: pkg, stdio: 'inherit' });
 }
 
+/** vitest options whose value is the next word of the command line (not a file filter). */
+const VALUED = new Set(['-t', '--testNamePattern', '--exclude', '--reporter', '--outputFile', '-c', '--config', '-r', '--root', '--dir',
+  '--project', '--pool', '--shard', '--bail', '--retry', '--maxWorkers', '--testTimeout', '--hookTimeout', '--environment', '--mode']);
+
+/**
+ * The file filters of the vitest command line (`npx vitest run src/monitor/x.test.ts -t name`:
+ * `src/monitor/x.test.ts`).
+ */
+export function fileFilters(argv: readonly string[]): string[] {
+  const words = argv.slice(2);
+  const out: string[] = [];
+  for (let i = 0; i < words.length; i++) {
+    const w = words[i]!;
+    if (VALUED.has(w)) i++;
+    else if (!w.startsWith('-') && !(i === 0 && ['run', 'watch', 'dev', 'related', 'list'].includes(w))) out.push(w);
+  }
+  return out;
+}
+
+/**
+ * Only the browser tests (test/e2e/) load the built front end (the unit tests of src/ and server/
+ * serve no page, or a folder of their own): a run whose every file filter is a path under src/ or
+ * server/ does not build it (~20 s saved); any other run (every file, an e2e file, a bare name that
+ * may match one) builds it when stale.
+ */
 export default function setup(): void {
+  const filters = fileFilters(process.argv);
+  if (filters.length && filters.every((f) => /^(\.\/)?((src|server)\/|test\/[^/]+\.test\.ts$)/.test(f))) return;
   ensureFrontendBuilt();
 }
