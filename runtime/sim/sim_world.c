@@ -69,6 +69,7 @@ typedef struct SimFinish {
     char from[64];       /* the event's producer, its out port, the module's in port             */
     int from_port, port;
     int64_t taken;       /* event 2: when the handler took it                                    */
+    int64_t exec;        /* a release: its simulated work time, said as its run_finished's cpu_ns */
 } SimFinish;
 
 /* An event flow an event schema connected (`A:o =* B:i`, `=>` one shot): B's handler takes what A
@@ -281,7 +282,7 @@ static void stop_if_last(SimSup *p, const char *module, int started_here) {
     m->started = 0;
     hold_record(p, module, "last hold dropped (stopped)");
     /* a run it ends ends with the STOP, as libmodule logs it (mailbox.c) */
-    if (running) record(p->w, module, "run_finished", p->v->name, -1, "activation=%ld STOP", m->activations);
+    if (running) record(p->w, module, "run_finished", p->v->name, -1, "activation=%ld cpu_ns=0 STOP", m->activations);
 }
 
 static void sio_start_module(void *ctx, const char *module, int priority) {
@@ -531,7 +532,7 @@ static void oio_release(void *ctx, const char *module, const char *schema, int64
     int64_t exec = m->exec_once >= 0 ? m->exec_once : m->exec_ns >= 0 ? m->exec_ns : m->wcet_ns;
     m->exec_once = -1;
     if (grow((void **)&w->fin, &w->capfin, w->nfin + 1, sizeof *w->fin)) return;
-    w->fin[w->nfin++] = (SimFinish){.at = w->now + exec, .seq = w->seq++, .module = i, .release_id = release_id, .activation = ++m->activations, .own_end = 0};
+    w->fin[w->nfin++] = (SimFinish){.at = w->now + exec, .seq = w->seq++, .module = i, .release_id = release_id, .activation = ++m->activations, .own_end = 0, .exec = exec};
     m->outstanding++;
     record(w, m->name, "run_started", "ORD", -1, "activation=%ld", m->activations);
 }
@@ -768,7 +769,7 @@ void sim_world_destroy(SimWorld *w) {
    whose code returned (mailbox.c: no STOP, no ack, no peer). */
 static void end_own_run(SimWorld *w, SimModule *m) {
     m->started = 0;
-    record(w, m->name, "run_finished", "", -1, "activation=%ld", m->activations);
+    record(w, m->name, "run_finished", "", -1, "activation=%ld cpu_ns=0", m->activations);
     drain(w);
 }
 
@@ -812,7 +813,9 @@ static int finish_one(SimWorld *w, int64_t t) {
     if (m->outstanding > 0) m->outstanding--;
     w->finished++;
     post_data(w, f.module, f.activation);
-    record(w, m->name, "run_finished", "", -1, "activation=%ld ACK_FINISHED", f.activation);
+    /* the release's CPU time: its simulated work time (a simulated module computes alone on its CPU:
+       no preemption, no load), as libmodule measures the module's thread (mailbox.c) */
+    record(w, m->name, "run_finished", "", -1, "activation=%ld cpu_ns=%lld ACK_FINISHED", f.activation, (long long)f.exec);
     if (w->ord) ord_core_release_finished(w->ord, w->now, m->name, f.release_id);
     drain(w);
     return 1;

@@ -74,6 +74,7 @@ typedef struct {
     int pending_count;
     long activations, requests;
     int running;
+    long long run_cpu0_ns;  /* the CPU time of the thread that read the run's START, when it read it (run_finished's cpu_ns) */
     /* an event the module's handler took (GetEventId) and has not ended yet: it ends when the
      * module reads its mailbox again (its request loop), logged then as `event_handled` */
     struct { int on; int port, from_port; RTIME since; char from[CONTRACT_NAME_MAX]; } handling;

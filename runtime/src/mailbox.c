@@ -21,6 +21,7 @@
  * channel (a process of an older library) gets them in its mailbox. */
 #define _GNU_SOURCE
 #include <errno.h>
+#include <time.h>
 #include <fcntl.h>
 #include <poll.h>
 #include <stdlib.h>
@@ -30,6 +31,22 @@
 #include <sys/uio.h>
 #include <unistd.h>
 #include "internal.h"
+
+/* The calling thread's CPU time in ns (CLOCK_THREAD_CPUTIME_ID), -1 when the clock cannot be read. */
+static long long thread_cpu_ns(void)
+{
+    struct timespec ts;
+    if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) != 0) return -1;
+    return (long long)ts.tv_sec * 1000000000LL + ts.tv_nsec;
+}
+
+/* run_started: note the thread's CPU time; run_finished: the CPU time the run took since (cpu_ns=N), -1 if unknown. */
+static void run_cpu_start(void) { g_rt.run_cpu0_ns = thread_cpu_ns(); }
+static long long run_cpu_used(void)
+{
+    long long now = thread_cpu_ns();
+    return now < 0 || g_rt.run_cpu0_ns < 0 ? -1 : now - g_rt.run_cpu0_ns;
+}
 
 extern const char ContractModuleDescription[] __attribute__((weak));
 
@@ -380,8 +397,8 @@ int SendAck(const char *module, int wantedAck, int ack, int ackId)
     m->Param.Ack.AckID = ackId;
     if ((ack == ACK_FINISHED || ack == ACK_STOPPED) && g_rt.running) {
         g_rt.running = 0;
-        char d[64];
-        snprintf(d, sizeof d, "activation=%ld %s", g_rt.activations, rt_ack_name(ack));
+        char d[96];
+        snprintf(d, sizeof d, "activation=%ld cpu_ns=%lld %s", g_rt.activations, run_cpu_used(), rt_ack_name(ack));
         ContractLog("run_finished", "", -1, 0, d);
     }
     int rc = rt_send_request_to(module, m); /* ack_sent or ack_failed once sent or not (rt_log_sent) */
@@ -490,13 +507,14 @@ static int accept_request(RequestMessage *m)
     ContractLog("request_received", m->Sender, port, m->DataSize, detail);
     if (m->Type == REQ_START && !g_rt.running) {
         g_rt.running = 1;
+        run_cpu_start();
         snprintf(detail, sizeof detail, "activation=%ld", g_rt.activations);
         ContractLog("run_started", m->Sender, -1, 0, detail);
     } else if ((m->Type == REQ_STOP || m->Type == REQ_KILL) && g_rt.running) {
         /* a stopped module is not running any more, whether or not it acknowledges the stop
          * (status queries: "is it running?" across supervisors) */
         g_rt.running = 0;
-        snprintf(detail, sizeof detail, "activation=%ld %s", g_rt.activations, rt_request_name(m->Type));
+        snprintf(detail, sizeof detail, "activation=%ld cpu_ns=%lld %s", g_rt.activations, run_cpu_used(), rt_request_name(m->Type));
         ContractLog("run_finished", m->Sender, -1, 0, detail);
     }
     return 1;
@@ -567,6 +585,7 @@ static void deliver(RequestMessage *out, const RequestMessage *in)
         /* a START read ahead while the run before went on, handed over once that run ended
          * (WaitForRequest): the module runs again from now (status queries) */
         g_rt.running = 1;
+        run_cpu_start();
         if (rt_log_enabled()) {
             char d[48];
             snprintf(d, sizeof d, "activation=%ld", g_rt.activations);
@@ -681,8 +700,8 @@ RequestMessage *WaitForRequest(RequestMessage *msg)
 {
     if (g_rt.running) { /* the skeleton waits only once a run is over */
         g_rt.running = 0;
-        char d[48];
-        snprintf(d, sizeof d, "activation=%ld", g_rt.activations);
+        char d[80];
+        snprintf(d, sizeof d, "activation=%ld cpu_ns=%lld", g_rt.activations, run_cpu_used());
         ContractLog("run_finished", "", -1, 0, d);
     }
     for (;;) {

@@ -65,7 +65,14 @@ void test_msc_request_loop(void)
     char *log = h_read_logs("MSC_");
     CHECK(log && strncmp(log, "mono_ns,wall_time,module,event,peer,port,size,detail\n", 52) == 0);
     CHECK(log && strstr(log, ",MSC,run_started,tester,,0,activation=1"));
-    CHECK(log && strstr(log, ",MSC,run_finished,,,0,activation=1 ACK_FINISHED"));
+    /* run_finished says the CPU time the run took in the module's thread: cpu_ns >= 0, before the ack */
+    const char *fin = log ? strstr(log, ",MSC,run_finished,,,0,activation=1 cpu_ns=") : NULL;
+    CHECK(fin != NULL);
+    if (fin) {
+        char *end = NULL;
+        long long cpu = strtoll(fin + strlen(",MSC,run_finished,,,0,activation=1 cpu_ns="), &end, 10);
+        CHECK_MSG(cpu >= 0 && end && strncmp(end, " ACK_FINISHED\n", 14) == 0, "run_finished: %.80s", fin);
+    }
     CHECK(log && strstr(log, ",MSC,request_received,tester,,0,KILL"));
     CHECK(log && strstr(log, ",MSC,ack_sent,tester,,0,ACK_NOTDONE id=12"));
     CHECK(log && strstr(log, ",MSC,module_exit,"));

@@ -100,7 +100,7 @@ describe('modules and event flows two supervisors share', () => {
         ]);
         // the modules' runs, as libmodule logs them: begun by ALF's START, ended by BET's STOP (the Monitor's running modules)
         const runs = scnRuns(r);
-        expect(runs.map((x) => `${Number(x.monoNs) / 1e6}ms ${x.kind} ${x.peer} ${x.detail}`)).toEqual(['1ms run_started ALF activation=1', '40ms run_finished BET activation=1 STOP']);
+        expect(runs.map((x) => `${Number(x.monoNs) / 1e6}ms ${x.kind} ${x.peer} ${x.detail}`)).toEqual(['1ms run_started ALF activation=1', '40ms run_finished BET activation=1 cpu_ns=0 STOP']);
         // the verbose report says the same, after the action line each decides
         const report = textReport([r], { verbose: true }).split('\n').map((l) => l.trim().replace(/^\S+\s+/, ''));
         const at = (line: string) => report.indexOf(line);
@@ -145,8 +145,8 @@ describe('modules and event flows two supervisors share', () => {
         ]);
         const runs = scnRuns(r);
         expect(runs.map((x) => `${Number(x.monoNs) / 1e6}ms ${x.kind} ${x.peer} ${x.detail}`)).toEqual([
-            '1ms run_started ALF activation=1', '3ms run_finished  activation=1', // returned: no STOP, no peer
-            '5ms run_started BET activation=2', '40ms run_finished BET activation=2 STOP',
+            '1ms run_started ALF activation=1', '3ms run_finished  activation=1 cpu_ns=0', // returned: no STOP, no peer
+            '5ms run_started BET activation=2', '40ms run_finished BET activation=2 cpu_ns=0 STOP',
         ]);
         // the verbose report tells the run's end under the step, in the words of `contract trace`
         const report = textReport([r], { verbose: true }).split('\n').map((l) => l.trim());
@@ -158,12 +158,12 @@ describe('modules and event flows two supervisors share', () => {
         expect(r.failures.map((f) => f.message)).toEqual([]);
         const runs = (x: typeof r) => scnRuns(x).map((y) => `${Number(y.monoNs) / 1e6}ms ${y.kind} ${y.detail}`);
         // ALF starts it at 1ms, it ends at 3ms; BET needs it at 5ms and starts it again, it ends at 7ms
-        expect(runs(r)).toEqual(['1ms run_started activation=1', '3ms run_finished activation=1', '5ms run_started activation=2', '7ms run_finished activation=2']);
+        expect(runs(r)).toEqual(['1ms run_started activation=1', '3ms run_finished activation=1 cpu_ns=0', '5ms run_started activation=2', '7ms run_finished activation=2 cpu_ns=0']);
         const once = await run(['finish SCN after 2ms once', 'start ALF.first()', 'start BET.second()', 'expect at 50ms module SCN stopped'].join('\n'));
-        expect(runs(once)).toEqual(['1ms run_started activation=1', '3ms run_finished activation=1', '5ms run_started activation=2', '40ms run_finished activation=2 STOP']);
+        expect(runs(once)).toEqual(['1ms run_started activation=1', '3ms run_finished activation=1 cpu_ns=0', '5ms run_started activation=2', '40ms run_finished activation=2 cpu_ns=0 STOP']);
         // a run stopped before its time is not ended again: ALF's undo at 20ms keeps it for BET, BET's at 40ms stops it
         const late = await run(['finish SCN after 100ms', 'start ALF.first()', 'start BET.second()', 'expect at 200ms module SCN stopped'].join('\n'));
-        expect(runs(late)).toEqual(['1ms run_started activation=1', '40ms run_finished activation=1 STOP']);
+        expect(runs(late)).toEqual(['1ms run_started activation=1', '40ms run_finished activation=1 cpu_ns=0 STOP']);
     }, 60_000);
 
     it('a module may crash before it is started; a second crash fails that step and says why (it was taken without a word)', async () => {
@@ -182,7 +182,7 @@ describe('modules and event flows two supervisors share', () => {
         expect(holds.filter((h) => h.module === 'SCN' || h.peer === 'SCN').map((h) => `${Number(h.monoNs) / 1e6}ms ${h.module} ${h.kind} ${h.detail}`)).toEqual([
             '2ms ALF module_hold hold taken (started it)', // ALF started at 1ms, its rule 1ms later
             '2ms SCN run_started activation=1',
-            '3ms SCN run_finished activation=1', // no second run_finished at the STOP: there was no run to end
+            '3ms SCN run_finished activation=1 cpu_ns=0', // no second run_finished at the STOP: there was no run to end
             '21ms ALF module_hold last hold dropped (stopped)',
         ]);
     }, 60_000);

@@ -131,7 +131,7 @@ void test_sim_report_story_records(void) {
     HAS(record(out, 5), "\"module\":\"ORD\",\"kind\":\"ord_release\",\"peer\":\"MSB\",\"detail\":\"schema=schemaCommande2 cycle=0 tick_ns=1000000000 release_ns=1000000000 release=");
     HAS(record(out, 5), "\"module\":\"MSB\",\"kind\":\"run_started\",\"peer\":\"ORD\",\"detail\":\"activation=1\"");
     HAS(record(out, 8), "\"module\":\"ORD\",\"kind\":\"ord_release\",\"peer\":\"MSB\",\"detail\":\"schema=schemaCommande2 cycle=3 tick_ns=4000000000 release_ns=4000000000 release=");
-    HAS(record(out, 8), "\"kind\":\"run_finished\",\"peer\":\"\",\"detail\":\"activation=4 ACK_FINISHED\"");
+    HAS(record(out, 8), "\"kind\":\"run_finished\",\"peer\":\"\",\"detail\":\"activation=4 cpu_ns=500000 ACK_FINISHED\"");
     HAS(record(out, 8), "\"kind\":\"ord_complete\",\"peer\":\"\",\"detail\":\"schema=schemaCommande2 cycle=3 tick_ns=4000000000 response_ns=");
     /* the holds of schemaReceptionMessage's modules and flow, as a run's engines write them:
        taken at 1 ms (after their action lines), the last (only) holder's undo at 300 ms */
@@ -198,9 +198,10 @@ void test_sim_overrun_makes_ord_emit_deadline_miss(void) {
     /* schemaCommande1 (period and critical delay 1 s) released at 300 ms; MSC takes 1.5 s */
     HAS(record(out, 3), "ORD:0 \\\"schemaCommande1\\\" (deadline miss)");
     HAS(record(out, 3), "\"timeNs\":1300000000,\"who\":\"ORD\",\"what\":\"ORD:0");
-    /* the same miss typed, on cycle 0; MSC, released after MSA's 0.5 ms, answered 1.5 s later */
+    /* the same miss typed, on cycle 0; MSC, released after MSA's 0.5 ms, answered 1.5 s later (its run_finished says
+       its simulated work time, the scenario's 1.5 s, as its CPU time) */
     HAS(record(out, 3), "{\"timeNs\":1300000000,\"module\":\"ORD\",\"kind\":\"ord_deadline_miss\",\"peer\":\"\",\"detail\":\"schema=schemaCommande1 cycle=0 tick_ns=300000000 critical_delay_ns=1000000000\"}");
-    HAS(record(out, 3), "{\"timeNs\":1800500000,\"module\":\"MSC\",\"kind\":\"run_finished\",\"peer\":\"\",\"detail\":\"activation=1 ACK_FINISHED\"}");
+    HAS(record(out, 3), "{\"timeNs\":1800500000,\"module\":\"MSC\",\"kind\":\"run_finished\",\"peer\":\"\",\"detail\":\"activation=1 cpu_ns=1500000000 ACK_FINISHED\"}");
     HAS(record(out, 3), "\"kind\":\"ord_finished\",\"peer\":\"MSC\",\"detail\":\"schema=schemaCommande1 cycle=0 release=");
     HAS(record(out, 3), " response_ns=1500500000\"}");
     HAS(record(out, 3), "\"kind\":\"ord_complete\",\"peer\":\"\",\"detail\":\"schema=schemaCommande1 cycle=0 tick_ns=300000000 response_ns=1501500000\"}");
@@ -302,7 +303,7 @@ void test_sim_finish_ends_an_asynchronous_run(void) {
     HAS(record(out, 1), "\"ok\":true");
     HAS(record(out, 1), "\"module\":\"MAA\",\"kind\":\"run_started\",\"peer\":\"SUP\",\"detail\":\"activation=1\"");
     HAS(record(out, 2), "\"verb\":\"finish\",\"ok\":true");
-    HAS(record(out, 2), "{\"timeNs\":2000000,\"module\":\"MAA\",\"kind\":\"run_finished\",\"peer\":\"\",\"detail\":\"activation=1\"}");
+    HAS(record(out, 2), "{\"timeNs\":2000000,\"module\":\"MAA\",\"kind\":\"run_finished\",\"peer\":\"\",\"detail\":\"activation=1 cpu_ns=0\"}");
     HAS(record(out, 3), "\"ok\":true");
     HAS(record(out, 4), "\"ok\":false,\"error\":\"MAA is not running: it has no run to finish\"");
     HAS(record(out, 5), "\"error\":\"NOPE is not running: it has no run to finish\"");
@@ -330,7 +331,7 @@ void test_sim_finish_after_ends_each_run(void) {
     HAS(record(out, 0), "\"verb\":\"finish-after\",\"ok\":true");
     HAS(record(out, 2), "\"module\":\"MAB\",\"kind\":\"run_started\",\"peer\":\"SUP\",\"detail\":\"activation=1\"");
     HAS(record(out, 2), "\"ok\":true");
-    HAS(record(out, 3), "{\"timeNs\":1500000,\"module\":\"MAB\",\"kind\":\"run_finished\",\"peer\":\"\",\"detail\":\"activation=1\"}");
+    HAS(record(out, 3), "{\"timeNs\":1500000,\"module\":\"MAB\",\"kind\":\"run_finished\",\"peer\":\"\",\"detail\":\"activation=1 cpu_ns=0\"}");
     HAS(record(out, 3), "\"ok\":true");
     HAS(record(out, 4), "bad time 'soon'");
     HAS(record(out, 5), "\"end\":true");

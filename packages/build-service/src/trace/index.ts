@@ -33,3 +33,5 @@ export { LogClock, LogClocks, monoBeyondInt64, monoTextProblem, wallTimeMs, posi
 export { UndosToOrd, type UnservedUndos } from './undos-to-ord.js';
 export { receiverGone, type ReceiverGoneWay } from './receiver-gone.js';
 export type { LauncherToldEnd } from './ended-mid-run.js';
+export { ModuleCpu, type ModuleCpuFigure } from './module-cpu.js';
+export { DurationQuantiles } from './duration-quantiles.js';

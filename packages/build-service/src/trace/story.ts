@@ -13,6 +13,7 @@ import { confirmingHold, type ConfirmingHold } from './action-holds.js';
 import { missedTicksOf, skippedReleasesOf } from './ord-counts.js';
 import { durationText } from './duration-text.js';
 import { ReleaseLateness } from './release-lateness.js';
+import { ModuleCpu, type ModuleCpuFigure } from './module-cpu.js';
 import { UndosToOrd } from './undos-to-ord.js';
 import { DataFlowUse } from './data-flow-use.js';
 import { EventWaits } from './event-waits.js';
@@ -458,6 +459,8 @@ export class StoryTeller {
     private readonly cappedLogs = new Map<string, string>();
     /** Per periodic schema (at most STORY_FOLLOWED): how late ORD released its cycles, told in its schema line. */
     private readonly lateness = new Map<string, ReleaseLateness>();
+    /** Each released module's CPU time per release (run_finished's cpu_ns): moduleCpuLines. */
+    readonly moduleCpu = new ModuleCpu();
     /** ORD's data flows: those connected long enough that delivered nothing, or far less than read; the event flows supervisors connected that delivered nothing (flowLines). */
     private readonly dataFlows = new DataFlowUse();
     /** Event flows whose posts waited for room in their subscriber's full mailbox (flowLines). */
@@ -517,6 +520,7 @@ export class StoryTeller {
         const what = String(k.fields['what'] ?? '');
         if (k.kind === 'supervisor') this.followAction(k, what);
         if (k.kind === 'ack_sent' || k.kind === 'run_finished') this.followAck(k);
+        this.moduleCpu.see(k);
         this.undos.see(k);
         this.endedMidRun.see(k);
         this.dataFlows.see(k);
@@ -590,7 +594,9 @@ export class StoryTeller {
             const starter = this.runs.get(k.module);
             this.runs.delete(k.module);
             const ended = starter === undefined ? undefined : ownRunEndText(k.detail);
-            return ended && `${at(k)} ${ended} (started by ${starter || 'a control tool'})`;
+            const cpu = k.fields['cpu_ns'];
+            const cpuText = typeof cpu === 'number' && cpu > 0 ? `; ${durationText(cpu)} of CPU` : '';
+            return ended && `${at(k)} ${ended} (started by ${starter || 'a control tool'}${cpuText})`;
         }
         if (k.kind === 'module_started') {
             this.exited.delete(k.module); // started again: a later stuck report is about this run of it
@@ -882,6 +888,16 @@ export class StoryTeller {
         return lines;
     }
 
+    /** One line per module ORD released whose runs said their CPU time, after the schema lines (module-cpu.ts). */
+    moduleCpuLines(): string[] {
+        return this.moduleCpu.lines();
+    }
+
+    /** The same as data, in module order (`contract run --format json`'s `moduleCpu`). */
+    moduleCpuFigures(): ModuleCpuFigure[] {
+        return this.moduleCpu.figures();
+    }
+
     /**
      * One line when some log stopped before the run's end (a `log-capped` record: `partial counts:
      * the logs of ORD (from +28.1 s), CUR (from +27.9 s) stopped before the run's end (log-capped):
@@ -957,7 +973,7 @@ export class StoryTeller {
     }
 }
 
-/** One line per told record, `+S.mmmmmm MODULE what`, then the flows' lines, then one line per asynchronous module that handled events, then one line per periodic schema, then a summary line of counts. */
+/** One line per told record, `+S.mmmmmm MODULE what`, then the flows' lines, then one line per asynchronous module that handled events, then one line per periodic schema, then one per released module's CPU per release, then a summary line of counts. */
 export function renderStory(records: TraceRecord[]): string[] {
     const teller = new StoryTeller();
     const lines: string[] = [];
@@ -965,6 +981,6 @@ export function renderStory(records: TraceRecord[]): string[] {
         const line = teller.tell(r);
         if (line !== undefined) lines.push(line);
     }
-    lines.push(...teller.endLines(), ...teller.flowLines(), ...teller.handlingLines(), ...teller.schemaLines(), teller.summary());
+    lines.push(...teller.endLines(), ...teller.flowLines(), ...teller.handlingLines(), ...teller.schemaLines(), ...teller.moduleCpuLines(), teller.summary());
     return lines;
 }

@@ -240,7 +240,7 @@ class Story {
     /** Each line one line: a newline or a bidi override carried by a record (a trace file's detail, an unreadable line's reason) is escaped, never a line of its own. */
     end(): string {
         const launcher = this.launcher ? this.launcherLines(this.launcher.rest()) : '';
-        return launcher + [...this.ends.lines(), ...this.teller.endLines(), ...this.teller.flowLines(), ...this.teller.handlingLines(), ...this.teller.schemaLines(), this.teller.summary()].map((l) => safeName(l) + '\n').join('') + this.ends.unreadable().map((l) => safeName(l) + '\n').join('');
+        return launcher + [...this.ends.lines(), ...this.teller.endLines(), ...this.teller.flowLines(), ...this.teller.handlingLines(), ...this.teller.schemaLines(), ...this.teller.moduleCpuLines(), this.teller.summary()].map((l) => safeName(l) + '\n').join('') + this.ends.unreadable().map((l) => safeName(l) + '\n').join('');
     }
 }
 

@@ -335,7 +335,7 @@ describe("scenarioOfRun: a run its own code ended while a supervisor's STOP of i
                 '3000000000,W,SUP,request_received,contract-launch,,0,STOP']),
             csv('MAA', ['1000100000,W,MAA,request_received,SUP,,0,START', '1000100000,W,MAA,run_started,SUP,,0,activation=1',
                 `${tr - 90_000},W,MAA,event_posted,SUP,2,256,to_port=2`,
-                `${tr + endAfter},W,MAA,run_finished,,,0,activation=1`,
+                `${tr + endAfter},W,MAA,run_finished,,,0,activation=1 cpu_ns=0`,
                 `${tr + endAfter + 400_000},W,MAA,request_received,SUP,,0,STOP`]),
         ]), { supervisors: new Set(['SUP']), start: 'SUP.action()', fallback: () => '"connected"' });
     };

@@ -62,9 +62,12 @@ function moduleState(s: MonitorState, name: string, t: Ns): ModuleState | undefi
   return entry(s, s.modules, name, () => ({ running: false, alive: true, runs: 0, since: t }));
 }
 
+/** Modules of a periodic schema whose CPU per release its block shows, at most. */
+export const RELEASED_MODULES_SHOWN = 16;
+
 function periodic(s: MonitorState, schema: string): PeriodicState | undefined {
   return entry(s, s.periodic, schema, () => ({
-    releases: 0, lastCycle: -1, lastRelease: 0, completions: 0, lastResponseNs: 0, maxResponseNs: 0, sumResponseNs: 0,
+    releases: 0, modules: [], lastCycle: -1, lastRelease: 0, completions: 0, lastResponseNs: 0, maxResponseNs: 0, sumResponseNs: 0,
     histogram: new Array<number>(HIST_BUCKETS).fill(0), lateHistogram: new Array<number>(HIST_BUCKETS).fill(0), lateCycles: 0, maxLateNs: 0, deadlineMisses: 0, overruns: 0, overrunning: false, missedTicks: 0, lateReleases: 0, recentMisses: [], recentOverruns: [], recentLateReleases: [],
   }));
 }
@@ -145,11 +148,12 @@ function noteStarted(s: MonitorState, supName: string, what: string, ruleKey?: s
 // them with a parsed record's fields, hot-line.ts with the fields read off the line in place.
 
 /** ord_release: `schema`, `cycle`, `release_ns`, `tick_ns` as the reader types them (str/num). */
-export function foldRelease(s: MonitorState, schema: string | undefined, cycle: number | undefined, releaseNs: number | undefined, t: Ns, t0: number, tickNs?: number): void {
+export function foldRelease(s: MonitorState, schema: string | undefined, cycle: number | undefined, releaseNs: number | undefined, t: Ns, t0: number, tickNs?: number, module?: string): void {
   if (!schema) return;
   const p = periodic(s, schema);
   if (!p) return;
   p.releases++;
+  if (module && p.modules.length < RELEASED_MODULES_SHOWN && !p.modules.includes(module)) p.modules.push(module);
   if (cycle !== undefined && cycle !== p.lastCycle && releaseNs !== undefined && tickNs !== undefined && releaseNs >= tickNs) {
     // a cycle's first release: how late ORD sent it after its tick
     const late = releaseNs - tickNs;
@@ -174,13 +178,18 @@ export function foldComplete(s: MonitorState, schema: string | undefined, resp: 
   p.histogram[histogramBucket(resp)]!++;
 }
 
-/** run_started (`started`) or run_finished of `module`. */
-export function foldRun(s: MonitorState, module: string, started: boolean, t: Ns): void {
+/** run_started (`started`) or run_finished of `module`, with the CPU time its run took (`cpu_ns`) when the record says it. */
+export function foldRun(s: MonitorState, module: string, started: boolean, t: Ns, cpuNs?: number): void {
   const m = moduleState(s, module, t);
   if (!m) return;
   m.running = started;
   if (started) m.runs++;
   m.since = t;
+  // a module's exec region only: ORD's and a supervisor's run is their whole life, no release
+  if (!started && cpuNs !== undefined && cpuNs > 0 && module !== 'ORD' && !s.supervisors.has(module)) {
+    m.lastCpuNs = cpuNs;
+    if (cpuNs > (m.maxCpuNs ?? 0)) m.maxCpuNs = cpuNs;
+  }
 }
 
 /** data_posted: `module`'s output `port` to `peer`'s `to_port`. */
@@ -450,7 +459,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       return;
     }
     case 'ord_release':
-      foldRelease(s, str(f['schema']), num(f['cycle']), num(f['release_ns']), t, t0, num(f['tick_ns']));
+      foldRelease(s, str(f['schema']), num(f['cycle']), num(f['release_ns']), t, t0, num(f['tick_ns']), k.peer);
       return;
     case 'ord_complete':
       foldComplete(s, str(f['schema']), num(f['response_ns']));
@@ -466,7 +475,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
     }
     case 'run_started':
     case 'run_finished':
-      foldRun(s, k.module, k.kind === 'run_started', t);
+      foldRun(s, k.module, k.kind === 'run_started', t, num(f['cpu_ns']));
       return;
     case 'priority':
       // ORD's: whether the run was real-time (SCHED_FIFO) or at nice levels, as contract trace says after its start

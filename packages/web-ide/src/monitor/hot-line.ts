@@ -82,14 +82,14 @@ export function applyHotLine(s: MonitorState, text: string, t: Ns, t0: number): 
   switch (scanned.kind) {
     case 'run_started':
     case 'run_finished':
-      foldRun(s, nameIn(text, c[1]! + 1, c[2]!), scanned.kind === 'run_started', t);
+      foldRun(s, nameIn(text, c[1]! + 1, c[2]!), scanned.kind === 'run_started', t, scanned.kind === 'run_finished' ? numberOf(text, detail, to, 'cpu_ns') : undefined);
       return;
     case 'ord_release': {
       const schema = nameOf(text, detail, to, 'schema');
       const cycle = numberOf(text, detail, to, 'cycle');
       const releaseNs = numberOf(text, detail, to, 'release_ns');
       const tickNs = releaseNs === undefined ? undefined : numberOf(text, detail, to, 'tick_ns');
-      foldRelease(s, schema, cycle, releaseNs, t, t0, tickNs);
+      foldRelease(s, schema, cycle, releaseNs, t, t0, tickNs, nameIn(text, c[3]! + 1, c[4]!));
       // what a deadline miss names (MonitorModel): the release's schema and cycle, as read here, and how late ORD sent it
       hotRelease.schema = schema;
       hotRelease.cycle = cycle;

@@ -24,7 +24,7 @@ import { MarksStrip, markTooltip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { unheardEventText } from '@contract-studio/build-service/trace';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
-import { NOT_IN_MODEL, crashedModulesText, notReleasedText, schedulingText, flowDropText, flowValueText, flowWaitText, flowWaitTitle, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, lateReleasesText, ruleTexts, quietDataFlowRow, isSimulatedFlowsLine, timeReadout, unheardEventsRow } from './panel-text.js';
+import { NOT_IN_MODEL, crashedModulesText, notReleasedText, schedulingText, flowDropText, flowValueText, flowWaitText, flowWaitTitle, fmtT, followButton, keptRequestsLine, moduleCpuText, namesPastBoundText, releaseLatenessText, lateReleasesText, ruleTexts, quietDataFlowRow, isSimulatedFlowsLine, timeReadout, unheardEventsRow } from './panel-text.js';
 import { visibleText } from '@contract-studio/conventions';
 import { shortAtWord } from '../util/short-text.js';
 
@@ -524,7 +524,7 @@ export class MonitorPanel {
         hist.counts = { releases: p?.releases ?? -1, completions: p?.completions ?? -1, misses: p?.deadlineMisses, lateReleases: p?.lateReleases, overruns: p?.overruns, cd, period, live: this.live, empty };
         setText(hist.title, `${name} · PERIOD ${def?.period ?? '?'} · CRITICAL_DELAY ${def?.criticalDelay ?? '?'}`);
         setText(hist.text, p
-          ? `${p.releases} module release(s) · last cycle ${p.lastCycle} · ${p.completions} cycle(s) complete · ${p.completions ? `response last ${fmtNs(p.lastResponseNs)}, mean ${fmtNs(p.sumResponseNs / p.completions)}, max ${fmtNs(p.maxResponseNs)}` : 'no response time yet'} · ${p.deadlineMisses} deadline miss(es)${lateReleasesText(p.lateReleases)} · ${p.overruns} overrun(s)${p.overrunning ? ' (its last cycle overran: ORD tells how many releases it skipped only when it ends)' : ''}${p.missedTicks ? ` · ${p.missedTicks} missed tick(s)` : ''}${releaseLatenessText(p)}`
+          ? `${p.releases} module release(s) · last cycle ${p.lastCycle} · ${p.completions} cycle(s) complete · ${p.completions ? `response last ${fmtNs(p.lastResponseNs)}, mean ${fmtNs(p.sumResponseNs / p.completions)}, max ${fmtNs(p.maxResponseNs)}` : 'no response time yet'} · ${p.deadlineMisses} deadline miss(es)${lateReleasesText(p.lateReleases)} · ${p.overruns} overrun(s)${p.overrunning ? ' (its last cycle overran: ORD tells how many releases it skipped only when it ends)' : ''}${p.missedTicks ? ` · ${p.missedTicks} missed tick(s)` : ''}${releaseLatenessText(p)}${moduleCpuText(p.modules, s.modules)}`
           : notReleasedText(this.live, empty));
         setAttr(hist.root, 'data-releases', String(p?.releases ?? 0));
         setAttr(hist.root, 'data-misses', String(p?.deadlineMisses ?? 0));

@@ -107,6 +107,8 @@ export interface MissMark {
 
 export interface PeriodicState {
   releases: number;
+  /** The modules ORD released in it, the first RELEASED_MODULES_SHOWN: the schema's block shows their CPU per release. */
+  modules: string[];
   lastCycle: number;
   /** Release time of the last release, ns since the start. */
   lastRelease: Ns;
@@ -148,6 +150,9 @@ export interface ModuleState {
   alive: boolean;
   runs: number;
   since: Ns;
+  /** The CPU time of its last finished run, and the largest (run_finished's `cpu_ns`: its own thread's CPU during the run; absent in logs of older versions and while no run reported one above 0; never ORD's nor a supervisor's, whose run is their whole life). */
+  lastCpuNs?: number;
+  maxCpuNs?: number;
   /** Its code crashed (its `module_crashed` record: the runtime's signal handler wrote it as the module died), in `contract trace`'s words: `crashed: signal 11 (SIGSEGV)`; gone when it is started again. */
   crashed?: string;
   /**
