@@ -114,7 +114,7 @@ describe('a module whose own code ends its run: a real bwrap run and the simulat
         const known = run.records.filter((r): r is KnownRecord => r.kind !== 'unknown' && !('rule' in r)) as KnownRecord[];
         const started = known.find((r) => r.module === 'PAN' && r.kind === 'supervisor' && r.fields['what'] === 'function_started');
         const limit = known.find((r) => r.module === 'PAN' && r.kind === 'event_received' && r.peer === 'PTU');
-        const ended = known.find((r) => r.module === 'HOM' && r.kind === 'run_finished' && r.detail === 'activation=1');
+        const ended = known.find((r) => r.module === 'HOM' && r.kind === 'run_finished' && /^activation=1 cpu_ns=\d+$/.test(r.detail));
         expect(started && limit && ended, run.output).toBeTruthy();
         const ms = (r: TraceRecord) => Number(mono(r) - mono(started!)) / 1e6;
         // HOM's "homed" and the end of its run come together: the run's end first, as HOM posts

@@ -23,7 +23,7 @@ function runLogs(msaExtra: string[] = [], ordExtra: string[] = []) {
         { name: MSA, text: [CSV_HEADER,
             `${at(1)},${W(0)},MSA,module_started,,,0,pid=2 priority=84`,
             `${at(11)},${W(0)},MSA,run_started,ORD,,0,activation=1`,
-            `${at(12)},${W(0)},MSA,run_finished,,,0,activation=1 ACK_FINISHED`,
+            `${at(12)},${W(0)},MSA,run_finished,,,0,activation=1 cpu_ns=41000 ACK_FINISHED`,
             ...msaExtra, ''].join('\n') },
     ];
 }

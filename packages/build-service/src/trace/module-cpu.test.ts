@@ -49,3 +49,11 @@ describe("contract trace: each released module's CPU per release", () => {
         expect(read.files.map((f) => f.name)).toEqual(['MSC_run.csv']);
     });
 });
+
+describe('a run its own code ended, with its cpu_ns', () => {
+    it('is told as before: the CPU time is no part of the line', () => {
+        const own = [`1000000000,${W},MAA,module_started,,,0,pid=42 priority=30`, `1100000000,${W},MAA,run_started,SUP,,0,activation=1`, `1102000000,${W},MAA,run_finished,,,0,activation=1 cpu_ns=1250000`];
+        const story = renderStory(parseTrace([{ name: 'MAA_1.csv', text: `${CSV_HEADER}\n${own.join('\n')}\n` }]));
+        expect(story.some((l) => l.endsWith('MAA  run #1 ended by its own code (started by SUP)'))).toBe(true);
+    });
+});

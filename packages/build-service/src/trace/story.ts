@@ -594,9 +594,8 @@ export class StoryTeller {
             const starter = this.runs.get(k.module);
             this.runs.delete(k.module);
             const ended = starter === undefined ? undefined : ownRunEndText(k.detail);
-            const cpu = k.fields['cpu_ns'];
-            const cpuText = typeof cpu === 'number' && cpu > 0 ? `; ${durationText(cpu)} of CPU` : '';
-            return ended && `${at(k)} ${ended} (started by ${starter || 'a control tool'}${cpuText})`;
+            // (its CPU time, cpu_ns, is no part of it: the figures of the released modules say theirs, module-cpu.ts)
+            return ended && `${at(k)} ${ended} (started by ${starter || 'a control tool'})`;
         }
         if (k.kind === 'module_started') {
             this.exited.delete(k.module); // started again: a later stuck report is about this run of it

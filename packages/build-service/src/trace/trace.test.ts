@@ -549,14 +549,14 @@ describe('reading a log', () => {
     it("tells a run a supervisor or a control tool began that its module's own code ended (no STOP, no ack); not a release's end or a stopped run", () => {
         const story = storyOfLog('X_1.csv', [
             '1000000,w,MAB,run_started,SUP,,0,activation=1',
-            '1200000,w,MAB,run_finished,,,0,activation=1',                // its code set *stateindex = -1
+            '1200000,w,MAB,run_finished,,,0,activation=1 cpu_ns=41000',                // its code set *stateindex = -1
             '2000000,w,SCN,run_started,ALF,,0,activation=1',
-            '3000000,w,SCN,run_finished,BET,,0,activation=1 STOP',       // stopped: the holds tell it
+            '3000000,w,SCN,run_finished,BET,,0,activation=1 cpu_ns=41000 STOP',       // stopped: the holds tell it
             '4000000,w,MSC,run_started,ORD,,0,activation=7',
-            '4500000,w,MSC,run_finished,ORD,,0,activation=7 ACK_FINISHED', // a release's end
+            '4500000,w,MSC,run_finished,ORD,,0,activation=7 cpu_ns=41000 ACK_FINISHED', // a release's end
             '5000000,w,TEL,run_started,,,0,activation=2',                 // a control tool's START
-            '6000000,w,TEL,run_finished,,,0,activation=2',
-            '7000000,w,TEL,run_finished,,,0,activation=3',               // no start read: not told
+            '6000000,w,TEL,run_finished,,,0,activation=2 cpu_ns=41000',
+            '7000000,w,TEL,run_finished,,,0,activation=3 cpu_ns=41000',               // no start read: not told
         ]);
         expect(story.slice(0, -1)).toEqual([
             '+0.000200s MAB  run #1 ended by its own code (started by SUP)',
@@ -724,7 +724,7 @@ describe('reading a log', () => {
         const hogLog = [
             `${T + 1_750_000},w,HOG,request_received,ORD,,0,START`,
             `${T + 1_751_000},w,HOG,run_started,ORD,,0,activation=152`,
-            `${T + 2_240_000},w,HOG,run_finished,,,0,activation=152 ACK_FINISHED`,
+            `${T + 2_240_000},w,HOG,run_finished,,,0,activation=152 cpu_ns=41000 ACK_FINISHED`,
             `${T + 2_250_000},w,HOG,ack_sent,ORD,,0,ACK_FINISHED id=684`,
         ];
         // ARM really finished after the deadline (its ack at +12 ms): it is still named
@@ -814,7 +814,7 @@ describe("a supervisor's undo that reached ORD's mailbox after ORD's last read o
 
     it("tells a module gone mid-run at its last record from ORD's stuck record or a request that found it not running, once", () => {
         // SRT SIGKILLed at +0.2 s; ORD's next START to it found its mailbox stale at +0.3 s, its stuck report came at +2.5 s
-        const srt = [CSV_HEADER, '1100000000,w,SRT,module_started,,,0,pid=41 priority=40', '1200000000,w,SRT,run_finished,,,0,activation=1', ''].join('\n');
+        const srt = [CSV_HEADER, '1100000000,w,SRT,module_started,,,0,pid=41 priority=40', '1200000000,w,SRT,run_finished,,,0,activation=1 cpu_ns=41000', ''].join('\n');
         const ordLog = (lines: string[]) => [CSV_HEADER, '1000000000,w,ORD,module_started,,,0,pid=40 priority=90', ...lines, ''].join('\n');
         const stuck = '3500000000,w,ORD,scheduler,,,0,stuck: SRT has not finished release #3 after 200 periods: it is no longer running (it crashed or was killed)';
         const byStuck = renderStory(parseTrace([{ name: 'SRT_1.csv', text: srt }, { name: 'ORD_1.csv', text: ordLog([stuck]) }]));

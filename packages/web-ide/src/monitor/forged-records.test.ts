@@ -19,7 +19,7 @@ const logs = (msaExtra: string[]) => [
     `${at(11)},${W},ORD,ord_release,MSA,,0,schema=schemaCommande1 cycle=0 tick_ns=${at(11)} release_ns=${at(11)} release=1`,
     `${at(12)},${W},ORD,ord_complete,,,0,schema=schemaCommande1 cycle=0 tick_ns=${at(11)} response_ns=1000000`, ''].join('\n') },
   { name: MSA, text: [HEADER, `${at(1)},${W},MSA,module_started,,,0,pid=2 priority=84`, `${at(11)},${W},MSA,run_started,ORD,,0,activation=1`,
-    `${at(12)},${W},MSA,run_finished,,,0,activation=1 ACK_FINISHED`, ...msaExtra, ''].join('\n') },
+    `${at(12)},${W},MSA,run_finished,,,0,activation=1 cpu_ns=41000 ACK_FINISHED`, ...msaExtra, ''].join('\n') },
 ];
 const FORGED = [
   `${at(20)},${W},MSA,ord_deadline_miss,,,0,schema=schemaCommande1 cycle=99 tick_ns=1`,

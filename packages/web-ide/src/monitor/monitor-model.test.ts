@@ -303,7 +303,7 @@ describe('a deadline miss names what its cycle was waiting for', () => {
     const hog = [
       `${T + 1_750_000},w,HOG,request_received,ORD,,0,START`,
       `${T + 1_751_000},w,HOG,run_started,ORD,,0,activation=152`,
-      `${T + 2_240_000},w,HOG,run_finished,,,0,activation=152 ACK_FINISHED`,
+      `${T + 2_240_000},w,HOG,run_finished,,,0,activation=152 cpu_ns=2100000 ACK_FINISHED`,
       `${T + 2_250_000},w,HOG,ack_sent,ORD,,0,ACK_FINISHED id=684`,
     ];
     const want = ['deadline miss (ORD:0) cycle 152 (not finished: ARM; HOG finished at +2.250 ms (its ack sent), ORD had not read it at the deadline, 7.75 ms later: ORD was late reading it; ' +
@@ -476,7 +476,7 @@ describe('monitor model, long and hostile runs', () => {
       const tick = 10_000 + c * periodNs;
       out.push(line(tick, 'ORD', 'ord_release', 'M', '', `schema=S cycle=${c} tick_ns=${tick} release_ns=${tick} release=${c + 1}`));
       out.push(line(tick + 1, 'M', 'run_started', 'ORD', '', `activation=${c + 1}`));
-      out.push(line(tick + 300, 'M', 'run_finished', 'ORD', '', `activation=${c + 1} ACK_FINISHED`));
+      out.push(line(tick + 300, 'M', 'run_finished', 'ORD', '', `activation=${c + 1} cpu_ns=41000 ACK_FINISHED`));
       out.push(line(tick + 400, 'ORD', 'ord_complete', '', '', `schema=S cycle=${c} tick_ns=${tick} response_ns=${400 + (c % 50) * 1000}`));
       if (c % 1000 === 999) out.push(line(tick + 500, 'ORD', 'ord_deadline_miss', '', '', `schema=S cycle=${c} tick_ns=${tick}`));
       if (c === cycles / 2) out.push(line(tick + 600, 'SUP', 'sup_rule', '', '', 'f.R inactive cause=ORD:0 value="S"'));

@@ -58,7 +58,7 @@ describe('activation log of the engines (ORD and supervisors serve several activ
       '100,w,ORD,run_started,SFT,,0,activation=1',
       '101,w,ORD,scheduler,,,0,activate conveyorLoop (activation #1 from SFT)',
       '200,w,ORD,scheduler,,,0,activate pickLoop (activation #2 from PRD)',
-      '300,w,ORD,run_finished,PRD,,0,activation=2 STOP',
+      '300,w,ORD,run_finished,PRD,,0,activation=2 cpu_ns=41000 STOP',
       '301,w,ORD,scheduler,,,0,deactivate pickLoop (activation #2 from PRD)',
       '450,w,ORD,run_started,PRD,,0,activation=3',
       '451,w,ORD,scheduler,,,0,activate degradedLoop',
@@ -76,11 +76,11 @@ describe('activation log of the engines (ORD and supervisors serve several activ
       '11,w,SFT,supervisor,,,0,function cell() started',
       '20,w,SFT,supervisor,SAF,,0,subscribe SAF:0 =* :0 (activation #1)',
       '30,w,SFT,supervisor,,,0,function aux(n = 2) started',
-      '40,w,SFT,run_finished,contract-launch,,0,activation=2 STOP',
+      '40,w,SFT,run_finished,contract-launch,,0,activation=2 cpu_ns=41000 STOP',
       '41,w,SFT,supervisor,,,0,function aux stopped',
       '90,w,SFT,supervisor,,,0,function cell stopped',
       '50,w,MSC,run_started,ORD,,0,activation=1',
-      '60,w,MSC,run_finished,,,0,activation=1 ACK_FINISHED',
+      '60,w,MSC,run_finished,,,0,activation=1 cpu_ns=41000 ACK_FINISHED',
     ].join('\n');
     expect(activationsFromCsv(csv).map((a) => [a.module, a.start, a.end])).toEqual([['SFT', 11, 90], ['MSC', 50, 60]]);
   });

@@ -55,7 +55,7 @@ describe('timeline bars', () => {
 
   it('reads the activations of logs longer than a call can spread (300,000 in one file)', () => {
     const lines = ['mono_ns,wall_time,module,event,peer,port,size,detail'];
-    for (let k = 0; k < 300_000; k++) lines.push(`${k * 1000},w,CTL,run_started,ORD,,0,activation=${k + 1}`, `${k * 1000 + 300},w,CTL,run_finished,ORD,,0,activation=${k + 1} ACK_FINISHED`);
+    for (let k = 0; k < 300_000; k++) lines.push(`${k * 1000},w,CTL,run_started,ORD,,0,activation=${k + 1}`, `${k * 1000 + 300},w,CTL,run_finished,ORD,,0,activation=${k + 1} cpu_ns=41000 ACK_FINISHED`);
     const { acts, errors } = activationsFromLogs([{ name: 'CTL.csv', text: lines.join('\n') }]);
     expect(errors).toEqual([]);
     expect(acts).toHaveLength(300_000);
@@ -131,7 +131,7 @@ describe("an asynchronous module's lane: the events it handles (real records of 
     expect(bars.filter((b) => b.first.event).map((b) => b.x1)).toEqual(received.map((t) => x(t)));
     // a handler that posts: its bar lasts to its last post, and the next request read ends it
     const header = 'mono_ns,wall_time,module,event,peer,port,size,detail';
-    const pln = [header, '1000,w,PLN,run_started,SUP,,0,activation=1', '1100,w,PLN,run_finished,,,0,activation=1',
+    const pln = [header, '1000,w,PLN,run_started,SUP,,0,activation=1', '1100,w,PLN,run_finished,,,0,activation=1 cpu_ns=41000',
       '5000,w,PLN,request_received,SUP,2,8,EVENT from_port=2', '5010,w,PLN,event_received,SUP,2,8,from_port=2 latency_ns=900',
       '7410,w,PLN,event_posted,CTL,0,64,to_port=0', '9000,w,PLN,priority_changed,SUP,,0,"nice 13 (priority 30, was 30)"',
       '9100,w,PLN,request_received,SUP,2,8,EVENT from_port=2'].join('\n');
