@@ -74,7 +74,7 @@ export function writeSyntheticLogs(dir, { modules = 50, seconds = 60, periodMs =
       log(at(600), m, 'run_started', 'ORD', '', 0, `activation=${id}`);
       if (i > 0) log(at(2_000), m, 'data_received', workers[i - 1], 0, 24, `latency_ns=${8_000 + ((cycle * 31 + i * 17) % 5_000)}`);
       log(at(30_000 + ((cycle * 13 + i * 7) % 20_000)), m, 'data_posted', workers[(i + 1) % workers.length], 0, 24, 'to_port=0');
-      log(at(1_000), m, 'run_finished', '', '', 0, `activation=${id} ACK_FINISHED`);
+      log(at(1_000), m, 'run_finished', '', '', 0, `activation=${id} cpu_ns=41000 ACK_FINISHED`);
       log(at(700), m, 'ack_sent', 'ORD', '', 0, `ACK_FINISHED id=${id}`);
       log(at(8_000), 'ORD', 'ack_received', m, '', 0, `ACK_FINISHED id=${id}`);
       log(at(900), 'ORD', 'ord_finished', m, '', 0, `schema=control cycle=${cycle} release=${id} response_ns=${t - tick}`);

@@ -19,7 +19,7 @@ export function khzCycle(L, c, state, full) {
     L(t + 5000, m, 'run_started', 'ORD', '', 0, `activation=${id}`);
     if (i < 2) L(t + 40_000, m, 'data_posted', mods[i + 1], i, 24, `to_port=${i === 0 ? 0 : 2}`);
     if (full && i > 0) L(t + 8000, m, 'data_received', mods[i - 1], i === 1 ? 0 : 2, 24, 'latency_ns=9000');
-    L(t + 50_000, m, 'run_finished', 'ORD', '', 0, `activation=${id} ACK_FINISHED`);
+    L(t + 50_000, m, 'run_finished', 'ORD', '', 0, `activation=${id} cpu_ns=41000 ACK_FINISHED`);
     if (full) L(t + 60_000, 'ORD', 'ack_received', m, '', 0, `ACK_FINISHED id=${id}`);
     t += 60_000 + (full ? (c % 97) * 300 : 0);
     L(t + 500, 'ORD', 'ord_finished', m, '', 0, `schema=schemaCommande1 cycle=${c} release=${id} response_ns=${t + 500 - tick}`);

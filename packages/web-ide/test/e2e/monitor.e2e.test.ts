@@ -117,7 +117,7 @@ describe('Monitor in headless Chromium', () => {
     for (let i = 0; i < LONG_RUN_RELEASES; i++) ord.push(`${1_000_000_000 + i * 1_000_000},2026-11-29T10:00:01.000000Z,ORD,ord_release,CTL,,0,schema=S cycle=${i} tick_ns=${1_000_000_000 + i * 1_000_000} release_ns=${1_000_000_100 + i * 1_000_000} release=${i + 1}`);
     writeFileSync(join(s.workspace, 'long-run', 'ORD_29-Nov-2026-10h00m00s.csv'), ord.join('\n') + '\n');
     writeFileSync(join(s.workspace, 'long-run', 'CTL_29-Nov-2026-10h00m00s.csv'), ['mono_ns,wall_time,module,event,peer,port,size,detail',
-      '1000005000,2026-11-29T10:00:01.000000Z,CTL,run_started,ORD,,0,activation=1', '1000050000,2026-11-29T10:00:01.000000Z,CTL,run_finished,ORD,,0,activation=1 ACK_FINISHED', ''].join('\n'));
+      '1000005000,2026-11-29T10:00:01.000000Z,CTL,run_started,ORD,,0,activation=1', '1000050000,2026-11-29T10:00:01.000000Z,CTL,run_finished,ORD,,0,activation=1 cpu_ns=41000 ACK_FINISHED', ''].join('\n'));
     truncateSync(join(s.workspace, 'long-run', 'CTL_29-Nov-2026-10h00m00s.csv'), 256 * 1024 * 1024 + 1);
     // a folder where a file named like a log is 40 MB of short lines that are no records
     mkdirSync(join(s.workspace, 'junk-run'));
@@ -274,13 +274,15 @@ describe('Monitor in headless Chromium', () => {
     // before GET /api/log the replay took the logs through GET /api/file, 413 past 8 MiB, and left ORD's out without a word;
     // then a log past 256 MiB was left out whole (CTL's records too): now its first 256 MiB are read, its whole lines, and that is said
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 60_000 })
-      .toBe('2 CSV log(s) in long-run (not whole: CTL_29-Nov-2026-10h00m00s.csv: only its first 217 bytes of 256.0 MiB read (the IDE reads 256.0 MiB of a log for a replay): ' +
+      .toBe('2 CSV log(s) in long-run (not whole: CTL_29-Nov-2026-10h00m00s.csv: only its first 230 bytes of 256.0 MiB read (the IDE reads 256.0 MiB of a log for a replay): ' +
         'its later records are not shown; the whole log is long-run/CTL_29-Nov-2026-10h00m00s.csv in the workspace (`contract trace` reads it whole))');
     expect(await page.evaluate(() => window.__ide.monitor.current!.recordCount)).toBe(LONG_RUN_RELEASES + 1 + 2);
     await shot(page, 'monitor-02-replay-left-out');
     await page.locator('.monitor-view').focus();
     await page.keyboard.press('End');
     await expect.poll(() => periodic(page, 'S').getAttribute('data-releases')).toBe(String(LONG_RUN_RELEASES));
+    // the schema's block says its module's CPU per release (CTL's run_finished cpu_ns), ORD's none
+    await expect.poll(() => periodic(page, 'S').locator('.monitor-pstats').textContent()).toContain(' · CPU per release: CTL last 41 µs, max 41 µs');
     // the replay's total bound (512 MiB: a folder of sparse 255 MiB logs must not fill the tab): a
     // log past what is left is not downloaded, and named (ORD's is read first: run-logs.ts replayOrder)
     await page.evaluate(() => (window.__ide.monitor.replayBytes = 1_000_000));
@@ -476,7 +478,7 @@ describe('Monitor in headless Chromium', () => {
       const m = window.__ide.monitor.lastLive!;
       // the two records below are counted from here: the write awaited may be the clock's own tick, before the first is folded
       const before = m.recordCount;
-      window.__ide.monitor.feed('khz', [{ file: 'MAB.csv', line: 2002, text: '3500000000,2026-11-29T10:00:03.500000Z,MSA,run_finished,ORD,,0,activation=1000' }]);
+      window.__ide.monitor.feed('khz', [{ file: 'MAB.csv', line: 2002, text: '3500000000,2026-11-29T10:00:03.500000Z,MSA,run_finished,ORD,,0,activation=1000 cpu_ns=41000' }]);
       const wrote = await Promise.race([written.then(() => true), new Promise((r) => setTimeout(() => r(false), 2000))]);
       if (!wrote) return { time: `the time was not written: ${time.textContent}`, row: '' };
       window.__ide.monitor.feed('khz', [{ file: 'MAB.csv', line: 2003, text: '4000000000,2026-11-29T10:00:04.000000Z,MAB,event_received,MAA,0,288,from_port=0 latency_ns=1000' }]);
