@@ -18,7 +18,7 @@ const NUMBER_KEYS = [
     'pid', 'priority', 'status', 'records', 'activation', 'id', 'sent', 'failed', 'replaced', 'kept_ns', 'to_port', 'latency_ns',
     'periodicity', 'waits', 'wait_ns', 'max_wait_ns', 'streak_ns', 'from_port', 'taken_ns', 'rules', 'handling_ns', 'cycle',
     'tick_ns', 'release_ns', 'release', 'response_ns', 'critical_delay_ns', 'late_us', 'critical_delay_us', 'skipped', 'missed',
-    'periods', 'port', 'in_port', 'out_port',
+    'periods', 'port', 'in_port', 'out_port', 'cpu_ns',
 ] as const;
 
 /** Keys whose value is text (a name, a word, a value as a rule's cause writes it): a JSON string, digits or not. */

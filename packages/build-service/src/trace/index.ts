@@ -34,4 +34,3 @@ export { UndosToOrd, type UnservedUndos } from './undos-to-ord.js';
 export { receiverGone, type ReceiverGoneWay } from './receiver-gone.js';
 export type { LauncherToldEnd } from './ended-mid-run.js';
 export { ModuleCpu, type ModuleCpuFigure } from './module-cpu.js';
-export { DurationQuantiles } from './duration-quantiles.js';

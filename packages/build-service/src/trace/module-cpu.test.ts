@@ -1,6 +1,6 @@
 /** contract trace's figure of each released module's CPU per release (module-cpu.ts), from run_finished's cpu_ns. */
 import { describe, expect, it } from 'vitest';
-import { CSV_HEADER, ModuleCpu, parseTrace, renderStory, traceFileToLogs, type KnownRecord } from './index.js';
+import { CSV_HEADER, ModuleCpu, parseTrace, renderStory, type KnownRecord } from './index.js';
 
 const W = '2026-12-07T11:02:48.568320Z';
 const PERIOD = 10_000_000;
@@ -31,22 +31,14 @@ describe("contract trace: each released module's CPU per release", () => {
         expect(story.indexOf(cpu[0]!)).toBe(story.length - 2);
     });
 
-    it('gives the same figure as an object (contract trace --format json)', () => {
+    it('gives the same figure as an object (contract run --format json: moduleCpu)', () => {
         const c = new ModuleCpu();
         for (const r of parseTrace(logs())) if (r.kind !== 'unknown') c.see(r as KnownRecord);
-        expect(c.figures()).toEqual([{ kind: 'module_cpu', module: 'MSC', releases: 100, maxNs: 4_000_000, p99Ns: 1_990_000, maxSchema: 'loop', maxCycle: 57, periodNs: PERIOD, maxShareOfPeriod: 0.4 }]);
+        expect(c.figures()).toEqual([{ module: 'MSC', releases: 100, maxNs: 4_000_000, p99Ns: 1_990_000, maxSchema: 'loop', maxCycle: 57, periodNs: PERIOD, maxShareOfPeriod: 0.4 }]);
     });
 
     it('says nothing for logs of older versions (no cpu_ns)', () => {
         expect(renderStory(parseTrace(logs(false))).filter((l) => l.startsWith('module '))).toEqual([]);
-    });
-
-    it('a trace file holding the figure objects reads them as no records', () => {
-        const file = ['{"kind":"module_cpu","module":"MSC","releases":1,"maxNs":5,"p99Ns":5,"maxSchema":"loop","maxCycle":0}',
-            `{"kind":"module_started","monoNs":"1000","wallTime":"${W}","module":"MSC","peer":"","port":null,"size":0,"detail":"pid=41 priority=40"}`].join('\n');
-        const read = traceFileToLogs('run.jsonl', file + '\n');
-        expect(read.problems).toEqual([]);
-        expect(read.files.map((f) => f.name)).toEqual(['MSC_run.csv']);
     });
 });
 
