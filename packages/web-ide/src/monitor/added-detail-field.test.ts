@@ -1,7 +1,7 @@
 /**
  * A field added to a record's detail (a `key=value` the runtime writes one day, at the end or
  * anywhere) changes nothing the readers conclude: the real recorded runs of fixtures/, with
- * ` cpu_ns=41234` after every run_finished's detail and `cpu_ns=41234 ` before every
+ * ` spare_ns=41234` (a key no reader knows) after every run_finished's detail and `spare_ns=41234 ` before every
  * ack_sent's and ack_received's, tell the same story (`contract trace`: runs ended by their own
  * code, deadline misses with the module that had finished) and make the same Monitor (its parsed
  * records, and its lines read in place) as the logs as recorded.
@@ -15,7 +15,7 @@ import { MonitorModel } from './monitor-model.js';
 import { recordedRunSteps } from './recorded-run.js';
 
 const FIXTURES = fileURLToPath(new URL('./fixtures', import.meta.url));
-const FIELD = 'cpu_ns=41234';
+const FIELD = 'spare_ns=41234';
 
 /** A fixture's logs (names without a date get one, as the runtime names them). */
 function logsOf(run: string): LogFile[] {
