@@ -134,7 +134,7 @@ describe('Monitor in headless Chromium', () => {
     await page.locator('#btn-monitor').click();
     await page.locator('.side-pane .monitor-view').waitFor();
     await page.locator('.monitor-sources').selectOption('dir:recorded');
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toBe('9 CSV log(s) in recorded');
     await checkTutorialStory(page);
     await shot(page, 'monitor-01-replay-tutorial');
     // keyboard: Home goes to the start (nothing active yet), ] steps to the next mark
@@ -233,7 +233,7 @@ describe('Monitor in headless Chromium', () => {
     const { page } = s;
     await monitorShown(page);
     await page.locator('.monitor-sources').selectOption('dir:recorded');
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toBe('9 CSV log(s) in recorded');
     const fromLogs = await marksOf(page);
     // the file as `contract run --trace` writes it (one JSON object a line), with a simulation's first
     // line (`contract simulate --trace`), and a line that is no record
@@ -242,14 +242,14 @@ describe('Monitor in headless Chromium', () => {
     writeFileSync(join(s.workspace, 'recorded.jsonl'), [sim, 'not json', ...records.map((r) => JSON.stringify(r))].join('\n') + '\n');
     await expect.poll(() => page.locator('.monitor-sources option[value="file:recorded.jsonl"]').count(), { timeout: 10_000 }).toBe(1);
     await page.locator('.monitor-sources').selectOption('file:recorded.jsonl');
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe(`Trace file recorded.jsonl · a simulation · ${records.length} record(s), 1 unreadable line(s) (not whole: line 2: not JSON)`);
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toBe(`Trace file recorded.jsonl · a simulation · ${records.length} record(s), 1 unreadable line(s) (not whole: line 2: not JSON)`);
     expect(await marksOf(page)).toEqual(fromLogs);
     await checkTutorialStory(page);
     // a click on the file in the explorer opens it in the Monitor (not as text in an editor tab)
     await page.locator('.monitor-sources').selectOption('dir:recorded');
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toBe('9 CSV log(s) in recorded');
     await page.locator('.tree-row[data-path="recorded.jsonl"]').click();
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toMatch(/^Trace file recorded\.jsonl · /);
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toMatch(/^Trace file recorded\.jsonl · /);
     expect(await page.locator('.tab[data-path="recorded.jsonl"]').count()).toBe(0);
     // the Timeline offers it too: the activations of the logs it was written from
     // the runs, not the events an asynchronous module handled (counted apart)
@@ -409,7 +409,7 @@ describe('Monitor in headless Chromium', () => {
     // drawn along the way, not only at the end (a frame per state that came)
     expect(await page.evaluate(() => window.__ide.monitor.panel!.frameMs.length) - drawnBefore).toBeGreaterThan(5);
     await page.locator('.monitor-sources').selectOption('dir:recorded');
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toBe('9 CSV log(s) in recorded');
     expect(await marksOf(page)).toEqual(liveMarks);
   });
 
@@ -525,7 +525,7 @@ describe('Monitor in headless Chromium', () => {
       '6000,w,SUP,sup_rule,,,0,action.OBSTACLE_AVOIDANCE_RECOVERY active cause=elapsed=1000ns', `7000,w,SUP,supervisor,,,0,function ${'F'.repeat(2000)} started`].join('\n') + '\n');
     await expect.poll(() => page.locator('.monitor-sources option[value="dir:hostile-run"]').count(), { timeout: 10_000 }).toBe(1);
     await page.locator('.monitor-sources').selectOption('dir:hostile-run');
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('2 CSV log(s) in hostile-run');
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toBe('2 CSV log(s) in hostile-run');
     await expect.poll(() => page.locator('.monitor-fn[data-function="SUP.constructor"]').textContent()).toMatch(/^constructor\(\) \(not in the model\) — running since/);
     expect(await rule(page, 'SUP.constructor.__proto__').getAttribute('data-active')).toBe('true');
     expect(await rule(page, 'SUP.action.toString').getAttribute('data-active')).toBe('true');
@@ -560,12 +560,12 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(() => rule(page, 'SUP.action.FIRST').getAttribute('data-active')).toBe('true');
     // a log added while another run is shown: read when the folder is picked again
     await page.locator('.monitor-sources').selectOption('dir:recorded');
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toBe('9 CSV log(s) in recorded');
     writeFileSync(join(dir, 'ORD_1-Jan-2026-00h00m00s.csv'), 'mono_ns,wall_time,module,event,peer,port,size,detail\n3000000,w,ORD,scheduler,,,0,activate schemaCommande1\n');
     // the watcher's change reaches the page: the tree lists the new log (the Monitor hears of it in the same update)
     await expect.poll(() => page.evaluate(() => (window as any).__ide.workspace.hasFile('growing-run/ORD_1-Jan-2026-00h00m00s.csv')), { timeout: 15_000 }).toBe(true);
     await page.locator('.monitor-sources').selectOption('dir:growing-run');
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('2 CSV log(s) in growing-run');
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toBe('2 CSV log(s) in growing-run');
     expect(await page.evaluate(() => window.__ide.monitor.current?.recordCount)).toBe(3);
   }, 60_000);
 
@@ -607,7 +607,7 @@ describe('Monitor in headless Chromium', () => {
     };
     await monitorShown(page);
     await page.locator('.monitor-sources').selectOption('dir:recorded');
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toBe('9 CSV log(s) in recorded');
     const marks = await marksOf(page);
     await reloaded();
     // before, the Monitor was closed after a reload (and, opened, said "No run yet")
@@ -620,7 +620,7 @@ describe('Monitor in headless Chromium', () => {
     writeFileSync(join(s.workspace, 'reload.jsonl'), records.map((r) => JSON.stringify(r)).join('\n') + '\n');
     await expect.poll(() => page.locator('.monitor-sources option[value="file:reload.jsonl"]').count(), { timeout: 10_000 }).toBe(1);
     await page.locator('.monitor-sources').selectOption('file:reload.jsonl');
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe(`Trace file reload.jsonl · ${records.length} record(s)`);
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toBe(`Trace file reload.jsonl · ${records.length} record(s)`);
     await reloaded();
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 }).toBe(`Trace file reload.jsonl · ${records.length} record(s)`);
     expect(await marksOf(page)).toEqual(marks);
@@ -661,7 +661,7 @@ describe('Monitor in headless Chromium', () => {
     const { page } = s;
     await monitorShown(page);
     await page.locator('.monitor-sources').selectOption('dir:recorded');
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toBe('9 CSV log(s) in recorded');
     await page.locator('#btn-monitor').click(); // hidden
     await expect.poll(() => page.locator('.side-pane').isHidden()).toBe(true);
     await openFile(page, 'supervisor.contract');
@@ -879,7 +879,7 @@ describe('Monitor in headless Chromium', () => {
     if (streamed > 0) {
       // the live trace arrived (trace-live producer): the story as it was streamed
       await page.locator('.monitor-sources').selectOption(`live:${jobId}`);
-      await expect.poll(() => page.locator('.monitor-source').textContent()).toBe(`Build & Run job ${jobId} · as streamed · ended: succeeded`);
+      await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toBe(`Build & Run job ${jobId} · as streamed · ended: succeeded`);
       liveMarks = await marksOf(page);
       await checkTutorialStory(page);
       await shot(page, 'monitor-02-live-tutorial');
@@ -887,7 +887,7 @@ describe('Monitor in headless Chromium', () => {
     // the job's CSV logs: the recorded run
     await expect.poll(() => page.locator(`.monitor-sources option[value="job:${jobId}"]`).count(), { timeout: 20_000 }).toBe(1);
     await page.locator('.monitor-sources').selectOption(`job:${jobId}`);
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toMatch(/· CSV logs$/);
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toMatch(/· CSV logs$/);
     const { second } = await checkTutorialStory(page);
     await shot(page, 'monitor-03-job-replay-tutorial');
     await seek(page, second.t + 1.5e9);
@@ -909,7 +909,7 @@ describe('Monitor in headless Chromium', () => {
     // recorded runs: this job's is let go, listed still, and read again from the build service
     // when picked, the same story; one the service does not know is said and dropped
     await page.locator('.monitor-sources').selectOption('dir:recorded');
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toBe('9 CSV log(s) in recorded');
     const fixture = readdirSync(FIXTURE).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') }));
     for (let i = 0; i < 7; i++) {
       await page.evaluate(({ id, files }) => window.__ide.monitor.showRecorded(id, { label: id, files, problems: [] }), { id: `j-other-${i}`, files: fixture });
