@@ -11,10 +11,7 @@
  *   LSP initialize;
  * - installed offline as a devDependency of a temp project next to a copy of examples/tutorial,
  *   `npx contract check .` works there (docs/ci.md).
- * Nothing is cached in the repository (all in a temp folder). The devDependency install and its two
- * checks run in the background from beforeAll while the first test works (its commands are awaited,
- * not run synchronously, so that the checks start as soon as the install ends); the second test
- * asserts what they said.
+ * Nothing is cached in the repository (all in a temp folder).
  */
 import { spawn, spawnSync } from 'node:child_process';
 import { chmodSync, cpSync, existsSync, mkdirSync, mkdtempSync, readdirSync, writeFileSync } from 'node:fs';
@@ -27,27 +24,8 @@ import { removeScratch } from '../scratch.js';
 let root: string;
 /** The packed CLI tarball. */
 let tarball: string;
-/** What a command run in the background said: its exit status (null: it could not be run or was killed) and output. */
-interface Ran { status: number | null; stdout: string; stderr: string }
-/**
- * `npm install --save-dev` of the tarball into a project beside a copy of the tutorial, then, when
- * it succeeded, `npx contract check .` and `npx contract check . --format json` there: started by
- * beforeAll, read by the second test.
- */
-let devInstall: Promise<{ install: Ran; check?: Ran; json?: Ran }>;
-
-/** Runs a command without blocking the event loop; resolves when it ends (`timeout` ms: killed). */
-function spawnAndWait(command: string, args: string[], options: { cwd: string; env: NodeJS.ProcessEnv; timeout: number }): Promise<Ran> {
-    return new Promise((resolve) => {
-        const child = spawn(command, args, { ...options, stdio: ['ignore', 'pipe', 'pipe'] });
-        let stdout = '';
-        let stderr = '';
-        child.stdout.on('data', (d: Buffer) => (stdout += d.toString()));
-        child.stderr.on('data', (d: Buffer) => (stderr += d.toString()));
-        child.on('error', (e) => resolve({ status: null, stdout, stderr: `${stderr}${e.message}` }));
-        child.on('close', (status) => resolve({ status, stdout, stderr }));
-    });
-}
+/** `npm install --save-dev` of the tarball into a project beside a copy of the tutorial, started by beforeAll. */
+let devInstall: Promise<{ status: number | null; out: string }>;
 
 /** What an LSP server started as `command --stdio` answers to `initialize` (its stdout until then). */
 function initializeAnswer(command: string, cwd: string, env: NodeJS.ProcessEnv): Promise<string> {
@@ -75,16 +53,17 @@ beforeAll(() => {
     expect(tarballs).toHaveLength(1);
     expect(tarballs[0]).toMatch(/^contract-studio-cli-\d+\.\d+\.\d+\.tgz$/);
     tarball = join(packs, tarballs[0]!);
-    // the devDependency install and its checks run while the first test works (most of both installs is unpacking the tarball)
+    // the devDependency install runs while the first test works (most of both is unpacking the tarball)
     const project = join(root, 'robot-project');
     cpSync(join(REPO, 'examples/tutorial'), join(project, 'tutorial'), { recursive: true });
     writeFileSync(join(project, 'package.json'), JSON.stringify({ name: 'robot-project', private: true }));
-    const tutorial = { cwd: join(project, 'tutorial'), env: npmEnv, timeout: 60_000 };
-    devInstall = spawnAndWait('npm', ['install', '--save-dev', '--offline', tarball], { cwd: project, env: npmEnv, timeout: 600_000 }).then(async (install) => {
-        if (install.status !== 0) return { install };
-        const check = await spawnAndWait('npx', ['contract', 'check', '.'], tutorial);
-        const json = await spawnAndWait('npx', ['contract', 'check', '.', '--format', 'json'], tutorial);
-        return { install, check, json };
+    devInstall = new Promise((resolve) => {
+        const child = spawn('npm', ['install', '--save-dev', '--offline', tarball], { cwd: project, env: npmEnv, stdio: ['ignore', 'pipe', 'pipe'] });
+        let out = '';
+        child.stdout.on('data', (d: Buffer) => (out += d.toString()));
+        child.stderr.on('data', (d: Buffer) => (out += d.toString()));
+        child.on('error', (e) => resolve({ status: null, out: `${out}${e.message}` }));
+        child.on('close', (status) => resolve({ status, out }));
     });
 }, 300_000);
 afterAll(() => removeScratch(root), 120_000);
@@ -92,7 +71,7 @@ afterAll(() => removeScratch(root), 120_000);
 describe('the packed CLI, installed as users install it', () => {
     it('installs offline with -g, and runs new, check, build and run outside the repository', async () => {
         const prefix = join(root, 'prefix');
-        const install = await spawnAndWait('npm', ['install', '-g', '--offline', '--prefix', prefix, tarball], { cwd: root, timeout: 300_000, env: npmEnv });
+        const install = spawnSync('npm', ['install', '-g', '--offline', '--prefix', prefix, tarball], { encoding: 'utf8', timeout: 300_000, env: npmEnv });
         expect(install.status, `${install.stdout}${install.stderr}`).toBe(0);
         const bin = join(prefix, 'bin', 'contract');
         expect(existsSync(bin)).toBe(true);
@@ -102,39 +81,39 @@ describe('the packed CLI, installed as users install it', () => {
         mkdirSync(home);
         mkdirSync(work);
         const env: NodeJS.ProcessEnv = { PATH: `${join(prefix, 'bin')}:${process.env.PATH ?? '/usr/bin:/bin'}`, HOME: home, CONTRACT_CACHE_DIR: join(root, 'cache'), LANG: 'C.UTF-8' };
-        const contract = async (args: string[], timeout = 300_000) => {
-            const r = await spawnAndWait('contract', args, { cwd: work, timeout, env });
-            return { status: r.status, out: `${r.stdout}${r.stderr}` };
+        const contract = (args: string[], timeout = 300_000) => {
+            const r = spawnSync('contract', args, { cwd: work, encoding: 'utf8', timeout, env });
+            return { status: r.status, out: `${r.stdout ?? ''}${r.stderr ?? ''}` };
         };
 
-        const created = await contract(['new', 'robot']);
+        const created = contract(['new', 'robot']);
         expect(created.status, created.out).toBe(0);
-        const checked = await contract(['check', 'robot']);
+        const checked = contract(['check', 'robot']);
         expect(checked.status, checked.out).toBe(0);
         expect(checked.out).toMatch(/0 errors/);
-        const built = await contract(['build', 'robot', '--sandbox', 'bwrap']);
+        const built = contract(['build', 'robot', '--sandbox', 'bwrap']);
         expect(built.status, built.out).toBe(0);
         expect(readdirSync(join(root, 'cache')).some((n) => n === 'runtime')).toBe(true); // built into the cache, not in place
         // the CLI of the checkout, on the same cache, builds nothing again: the runtime is keyed by its
         // sources and the toolchain, the generated tree by the generator's bytes, not by where either lives
         const runtimes = readdirSync(join(root, 'cache', 'runtime')).filter((n) => n.startsWith('runtime-'));
         expect(runtimes).toHaveLength(1);
-        const fromCheckout = await spawnAndWait(process.execPath, [join(REPO, 'packages/cli/bin/contract.js'), 'build', 'robot', '--sandbox', 'bwrap', '--verbose'], { cwd: work, timeout: 300_000, env });
+        const fromCheckout = spawnSync(process.execPath, [join(REPO, 'packages/cli/bin/contract.js'), 'build', 'robot', '--sandbox', 'bwrap', '--verbose'], { cwd: work, encoding: 'utf8', timeout: 300_000, env });
         const checkoutOut = `${fromCheckout.stdout}${fromCheckout.stderr}`;
         expect(fromCheckout.status, checkoutOut).toBe(0);
         expect(checkoutOut).toContain(`${runtimes[0]!.slice('runtime-'.length)} (`);
         expect(checkoutOut).not.toContain('building the runtime');
         expect(checkoutOut).toMatch(/project unchanged since the last build: generation skipped|generated tree taken from the build cache/);
         expect(readdirSync(join(root, 'cache', 'runtime')).filter((n) => n.startsWith('runtime-'))).toEqual(runtimes);
-        const ran = await contract(['run', 'robot', '--sandbox', 'bwrap', '--duration', '2s']);
+        const ran = contract(['run', 'robot', '--sandbox', 'bwrap', '--duration', '2s']);
         expect(ran.status, ran.out).toBe(0);
 
         // the runtime's sources packed with it, for a build by hand (a robot with no checkout): no build product
-        const copied = await contract(['runtime-source', 'robot-runtime']);
+        const copied = contract(['runtime-source', 'robot-runtime']);
         expect(copied.status, copied.out).toBe(0);
         for (const f of ['Makefile', 'include/libmodule/libmodule.h', 'src/core.c', 'launcher/contract-launch.c']) expect(existsSync(join(work, 'robot-runtime', f)), f).toBe(true);
         expect(existsSync(join(work, 'robot-runtime', 'build'))).toBe(false);
-        const made = await spawnAndWait('make', ['-s', '-j2', '-C', join(work, 'robot-runtime'), 'build/libmodule.a', 'build/contract-launch', 'CFLAGS=-O0'], { cwd: work, timeout: 300_000, env: process.env });
+        const made = spawnSync('make', ['-s', '-j2', '-C', join(work, 'robot-runtime'), 'build/libmodule.a', 'build/contract-launch', 'CFLAGS=-O0'], { encoding: 'utf8', timeout: 300_000 });
         expect(made.status, made.stderr).toBe(0);
 
         // the language server for desktop editors comes with it (docs/editors.md)
@@ -142,13 +121,16 @@ describe('the packed CLI, installed as users install it', () => {
     }, 900_000);
 
     it('installs offline as a devDependency: npx contract check . on a copy of the tutorial exits 0', async () => {
-        const { install, check, json } = await devInstall;
-        expect(install.status, `${install.stdout}${install.stderr}`).toBe(0);
+        const project = join(root, 'robot-project');
+        const install = await devInstall;
+        expect(install.status, install.out).toBe(0);
 
-        expect(check!.stdout).toBe('');
-        expect(check!.stderr).toContain('0 errors, 0 warnings, 0 hints in 13 files');
-        expect(check!.status).toBe(0);
+        const check = spawnSync('npx', ['contract', 'check', '.'], { cwd: join(project, 'tutorial'), encoding: 'utf8', timeout: 60_000, env: npmEnv });
+        expect(check.stdout).toBe('');
+        expect(check.stderr).toContain('0 errors, 0 warnings, 0 hints in 13 files');
+        expect(check.status).toBe(0);
 
-        expect(JSON.parse(json!.stdout)).toEqual({ diagnostics: [] });
+        const json = spawnSync('npx', ['contract', 'check', '.', '--format', 'json'], { cwd: join(project, 'tutorial'), encoding: 'utf8', timeout: 60_000, env: npmEnv });
+        expect(JSON.parse(json.stdout)).toEqual({ diagnostics: [] });
     }, 600_000);
 });
