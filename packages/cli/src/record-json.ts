@@ -139,27 +139,6 @@ export class JsonLines {
         this.pos = p;
     }
 
-    /** A record's `fields`: each value with its key's JSON type (fieldJsonValue), other keys as JSON.stringify writes them. */
-    private fields(o: object): void {
-        const proto = Object.getPrototypeOf(o) as unknown;
-        if ((proto !== Object.prototype && proto !== null) || typeof (o as { toJSON?: unknown }).toJSON === 'function') throw NOT_PLAIN;
-        this.ascii('{');
-        let first = true;
-        for (const key in o) {
-            if (!hasOwn.call(o, key)) continue;
-            const raw = (o as Record<string, unknown>)[key];
-            const v = fieldJsonValue(key, raw);
-            if (v === undefined || omitted(v)) continue;
-            if (!first) this.ascii(',');
-            first = false;
-            this.string(key);
-            this.ascii(':');
-            if (v instanceof ExactDigits) this.ascii(v.digits);
-            else this.value(v);
-        }
-        this.ascii('}');
-    }
-
     /** `v` written as JSON.stringify writes it (the caller leaves out what it leaves out: `omitted`). */
     private value(v: unknown): void {
         switch (typeof v) {
@@ -191,7 +170,11 @@ export class JsonLines {
         this.ascii(']');
     }
 
-    private object(o: object, top = false): void {
+    /**
+     * `o` as JSON.stringify writes it; `top`: a record, whose `fields` is written `typed`: each value
+     * with its key's JSON type (fieldJsonValue: an integer's exact digits), other keys as they are.
+     */
+    private object(o: object, top = false, typed = false): void {
         const proto = Object.getPrototypeOf(o) as unknown;
         if ((proto !== Object.prototype && proto !== null) || typeof (o as { toJSON?: unknown }).toJSON === 'function') throw NOT_PLAIN;
         this.ascii('{');
@@ -200,13 +183,15 @@ export class JsonLines {
         // order, then inherited ones, left out; unlike Object.keys it makes no array of them)
         for (const key in o) {
             if (!hasOwn.call(o, key)) continue;
-            const v = (o as Record<string, unknown>)[key];
+            const raw = (o as Record<string, unknown>)[key];
+            const v = typed ? fieldJsonValue(key, raw) : raw;
             if (omitted(v)) continue;
             if (!first) this.ascii(',');
             first = false;
             this.string(key);
             this.ascii(':');
-            if (top && key === 'fields' && typeof v === 'object' && v !== null && !Array.isArray(v)) this.fields(v);
+            if (v instanceof ExactDigits) this.ascii(v.digits);
+            else if (top && key === 'fields' && typeof v === 'object' && v !== null && !Array.isArray(v)) this.object(v, false, true);
             else this.value(v);
         }
         this.ascii('}');
