@@ -510,6 +510,7 @@ export class Job {
       const keptOff = this.request.cpus !== undefined ? await SERVICE_AFFINITY.keepOff(this.request.cpus) : null;
       if (keptOff?.said) this.system('run', keptOff.said);
       let run: Awaited<ReturnType<Job['runStep']>>;
+      const tRun = Date.now();
       const crashes = new LauncherCrashes();
       // the crash reports crashed modules wrote on their stderr (runtime crash_report.c): where they crashed
       const crashReports = new CrashReports();
@@ -566,6 +567,8 @@ export class Job {
       if (run.limitHit && !this.cancelRequested) this.runIssues.limit(run.limitHit);
       // the launcher refused the run before starting anything (too many modules, a CPU list...): said as such
       const refused = launcherStatus !== null && !this.cancelRequested ? this.runIssues.launcherExit(launcherStatus) : undefined;
+      // the sandboxed processes are gone, the live trace sent: the collection of the logs starts now
+      this.timed('run', 'run (the sandboxed processes)', tRun);
       // a cancelled run's logs too: what it wrote until it was stopped is the user's record of it
       // (a cancel during the collection stops it: what was read by then is kept)
       await this.collectArtifacts(ctx.sandbox, ws.workDir, collectBounds);

@@ -230,6 +230,54 @@ static int started_while_paused(const Step *s, int n, long long stop, long long 
     return 0;
 }
 
+static void sleep_ms(long ms) {
+    struct timespec ts = {ms / 1000, (ms % 1000) * 1000000L};
+    nanosleep(&ts, NULL);
+}
+
+/* `module`'s CSV log has the record of its function flip's end */
+static int flip_stopped(const Scenario *sc, const char *module) {
+    char *csv = read_csv_log(sc, module);
+    int yes = csv && strstr(csv, ",supervisor,,,0,function flip stopped\n") != NULL;
+    free(csv);
+    return yes;
+}
+
+/* Runs the architecture until HTA and HTB have both logged the end of their flip (or 60 s),
+   then stops it as a service manager does (SIGTERM to the launcher: its KILL requests, in
+   order). 1 if the flips ended, the launcher exited 0 and said every module stopped cleanly. */
+static int launch_until_flips_stopped(const Scenario *sc, const char *bin, const char *launcher,
+                                      const char *const *names) {
+    pid_t lp = scenario_spawn(sc, bin, launcher, "HTA.main()", NULL, names);
+    if (lp < 0) return 0;
+    int ended = 0, st = 0, waited = 0;
+    for (int t = 0; t < 1200 && !ended; t++) {
+        if (waitpid(lp, &st, WNOHANG) == lp) {
+            waited = 1;
+            break;
+        }
+        ended = flip_stopped(sc, "HTA") && flip_stopped(sc, "HTB");
+        if (!ended) sleep_ms(50);
+    }
+    if (!waited) {
+        kill(lp, SIGTERM);
+        for (int t = 0; t < 750 && !waited; t++) { /* 15 s for the stop */
+            if (waitpid(lp, &st, WNOHANG) == lp) waited = 1;
+            else sleep_ms(20);
+        }
+        if (!waited) {
+            kill(lp, SIGKILL);
+            waitpid(lp, &st, 0);
+            return 0;
+        }
+    }
+    char *txt = slurp(sc->launch);
+    int clean = txt && strstr(txt, "all modules stopped cleanly") != NULL;
+    if (!ended || !clean) say_output_tail(sc->run, txt, 2000);
+    free(txt);
+    return ended && clean && WIFEXITED(st) && WEXITSTATUS(st) == 0;
+}
+
 static void hold_toggles(const char *root, const char *bin, const char *launcher, int paused) {
     Scenario sc;
     if (!scenario_begin(&sc, root, paused ? "toggles-paused" : "toggles")) return;
@@ -237,13 +285,11 @@ static void hold_toggles(const char *root, const char *bin, const char *launcher
     char window[600];
     snprintf(window, sizeof window, "%s/pause.txt", sc.out);
     pid_t pauser = paused ? pause_amx(sc.run, window, 20, 1300) : 0;
-    /* the flips stop at 700 ms; the run lasts 2 s so that a host that stalls the supervisors a
-       few hundred ms (seen on CI: a decision came after the launcher's end-of-run KILL) still
-       leaves them time to end before it. Paused, the supervisors' decisions wait for AMX through
-       its 1.3 s pause (HTA's rule N came 1.37 s after its start on a loaded CI host), then the
-       700 ms of flips, then a last take may wait up to 0.5 s for AMX's answer: 2.5 s was not
-       enough there (HTB's last decision came 24 ms after the KILL); the run lasts 3.5 s. */
-    check(scenario_launch(&sc, bin, launcher, "HTA.main()", paused ? "3.5" : "2.0", names),
+    /* the flips stop at 700 ms; the run ends when both supervisors have logged the end of their
+       flip (no decision on AMX comes after it), not after a fixed duration: a loaded CI host
+       stalled the supervisors for seconds (paused, HTB's last decision once came after the
+       launcher's end-of-run KILL at 3.5 s) */
+    check(launch_until_flips_stopped(&sc, bin, launcher, names),
           paused ? "hold toggles, AMX paused 1.3 s: architecture ran and stopped cleanly"
                  : "hold toggles: architecture ran and stopped cleanly");
     int pst = -1;
