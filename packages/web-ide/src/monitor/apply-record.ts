@@ -271,16 +271,20 @@ function endKept(s: MonitorState, module: string): void {
 }
 
 /**
- * ORD ended at `t` (its exit or crash record; or, when its log ends with no exit record, its last
- * record: monitor-model.ts OrdEnd): no periodic schema runs any more, and ORD runs nothing.
+ * ORD ended at `t` (its exit or crash record, `ord-exit`; or, when its log ends with no exit record,
+ * its last record, `ord-gone`: monitor-model.ts OrdEnd): no periodic schema runs any more, and ORD
+ * runs nothing; the schemas it ended are the last ended (lastEnded, said under Active schemas).
  * Schemas shown ended stay so (`since` kept): applied again to a state that has it, it changes nothing.
  */
-export function endOrdSchemas(s: MonitorState, t: Ns): void {
-  for (const sc of s.schemas.values()) {
+export function endOrdSchemas(s: MonitorState, t: Ns, how: 'ord-exit' | 'ord-gone' = 'ord-gone'): void {
+  const ended: string[] = [];
+  for (const [name, sc] of s.schemas) {
     if (!sc.active) continue;
     sc.active = false;
     sc.since = t;
+    if (ended.length < 8) ended.push(name);
   }
+  if (ended.length) s.lastEnded = { name: ended.join(', '), kind: 'periodic', t, how };
   const ord = s.modules.get('ORD');
   if (ord) ord.running = false;
 }
@@ -357,6 +361,8 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
         if (/^undo\b|^un/.test(k.detail)) {
           sv.actionsUndone++;
           if (schema && k.detail.endsWith('(event schema)')) {
+            const rule = sv.eventSchemas?.get(schema);
+            if (rule !== undefined) s.lastEnded = { name: schema, kind: 'event', t, how: 'undone', by: rule ? `${k.module}.${rule}` : k.module };
             if (sv.eventSchemas?.delete(schema)) s.names--;
           } else if (schema && activation !== undefined && k.detail.endsWith(', to ORD)')) {
             // the undo of a request ORD never activated (refused: ORD:1): no longer waited for
@@ -430,6 +436,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
           sc.activations++;
           servedBy(s, sc, schema, f);
         } else if (what === 'deactivate') {
+          if (sc.active) s.lastEnded = { name: schema, kind: 'periodic', t, how: 'deactivated', ...(sc.by ? { by: sc.by } : {}) };
           sc.active = false;
           sc.since = t;
           const p = s.periodic.get(schema);
@@ -495,7 +502,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       m.since = t;
       // ORD gone (the end of a run: the launcher stops it before the supervisors, whose undos then
       // find no ORD to deactivate their schemas): no periodic schema runs any more
-      if (!m.alive && k.module === 'ORD') endOrdSchemas(s, t);
+      if (!m.alive && k.module === 'ORD') endOrdSchemas(s, t, 'ord-exit');
       return;
     }
     case 'data_posted':

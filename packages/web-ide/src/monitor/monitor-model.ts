@@ -341,6 +341,12 @@ export class MonitorModel implements MonitorView {
   private readonly flows = new FlowFindings();
   /** The run's end was marked (recordsEnded: once). */
   private endMarked = false;
+  /**
+   * The records are a simulation's (the option, or a `sim_start` pushed): its engines write no exit
+   * records, and its records end where the simulation stopped (its `until`, the session's time),
+   * not where ORD did: recordsEnded does not show ORD ended there.
+   */
+  private simulation = false;
   /** The schema a release or completion line named last, and its waits (a line naming it again is matched in place). */
   private lastWaits: CycleWaits | undefined;
   private lastWaitsName = '';
@@ -365,7 +371,14 @@ export class MonitorModel implements MonitorView {
     this.keep = Math.max(this.every * 2, opts.keepRecords ?? 200_000);
     this.maxMarks = opts.maxMarks ?? 20_000;
     this.checkpoints.push({ index: 0, t: 0, state: emptyState() });
-    this.chunks.push(new Chunk(this.every));    if (opts.simulation) this.flows.simulated();
+    this.chunks.push(new Chunk(this.every));
+    if (opts.simulation) this.simulated();
+  }
+
+  /** The records are a simulation's (FlowFindings.simulated; recordsEnded leaves ORD running). */
+  private simulated(): void {
+    this.simulation = true;
+    this.flows.simulated();
   }
 
   get recordCount(): number {
@@ -533,7 +546,7 @@ export class MonitorModel implements MonitorView {
   /** A parsed record (kept as it is). */
   push(r: TraceRecord): void {
     // a simulation's trace (stepsToTrace) starts with it: its modules ran no code (FlowFindings.simulated)
-    if (r.kind === 'sim_start') this.flows.simulated();
+    if (r.kind === 'sim_start') this.simulated();
     const t = this.timeOfRecord(r);
     this.beforeKeep();
     this.chunks[this.chunks.length - 1]!.push(t, r);
@@ -664,16 +677,21 @@ export class MonitorModel implements MonitorView {
   }
 
   /**
-   * The records are over (a recorded run read whole, a live run's job ended): the undos ORD's log
-   * never answered when it wrote no exit record (killed, terminated at the stop) are marked at the
-   * last record, as `contract trace` tells them after its last (UndosToOrd.atRecordsEnd: none while
-   * the run may still go on). Once.
+   * The records are over (a recorded run read whole, a live run's job ended, a simulation run to its
+   * end): the undos ORD's log never answered when it wrote no exit record (killed, terminated at
+   * the stop) are marked at the last record, as `contract trace` tells them after its last
+   * (UndosToOrd.atRecordsEnd: none while the run may still go on), and ORD's periodic schemas are
+   * shown ended there (ordGone); the flows' closing lines are told (quietDataFlows). Once. A
+   * simulation's ORD writes no exit record and did not end: its records stop at the simulation's
+   * end with its schemas still active, so they stay shown active (only the flows' lines are told).
    */
   recordsEnded(): void {
     if (this.endMarked) return;
     this.endMarked = true;
-    this.markUnserved(this.live.t, this.undos.atRecordsEnd());
-    this.ordGone();
+    if (!this.simulation) {
+      this.markUnserved(this.live.t, this.undos.atRecordsEnd());
+      this.ordGone();
+    }
     this.live.quietDataFlows = this.flows.endLines().map((l) => l.slice(0, 600));
     this.version++;
   }

@@ -24,7 +24,7 @@ import { MarksStrip, markTooltip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { unheardEventText } from '@contract-studio/build-service/trace';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
-import { NOT_IN_MODEL, crashedModulesText, notReleasedText, schedulingText, flowDropText, flowValueText, flowWaitText, flowWaitTitle, fmtT, followButton, keptRequestsLine, moduleCpuText, namesPastBoundText, releaseLatenessText, lateReleasesText, ruleTexts, quietDataFlowRow, isSimulatedFlowsLine, timeReadout, unheardEventsRow } from './panel-text.js';
+import { NOT_IN_MODEL, crashedModulesText, notReleasedText, schedulingText, flowDropText, flowValueText, flowWaitText, flowWaitTitle, fmtT, followButton, keptRequestsLine, moduleCpuText, namesPastBoundText, releaseLatenessText, lateReleasesText, ruleTexts, quietDataFlowRow, isSimulatedFlowsLine, noActiveSchemaText, timeReadout, unheardEventsRow } from './panel-text.js';
 import { visibleText } from '@contract-studio/conventions';
 import { shortAtWord } from '../util/short-text.js';
 
@@ -491,7 +491,12 @@ export class MonitorPanel {
       setText(el, `● ${a.name} (${a.kind})${a.by ? ` ← ${a.by}` : ''}`);
       return el;
     });
-    if (!items.length) items.push(this.row('schema:none', () => h('div', { class: 'muted' }, 'none')));
+    // none active: once one has ended, which, when and why (a simulation's or a run's end reads as such)
+    if (!items.length) {
+      const none = this.row('schema:none', () => h('div', { class: 'muted monitor-schemas-none' }, 'none'));
+      setText(none, visibleText(noActiveSchemaText(s)));
+      items.push(none);
+    }
     replaceIfChanged(this.schemasEl, items);
     setText(this.schedEl, s.ordPriority ? schedulingText(visibleText(s.ordPriority)) : '');
     if (this.schedEl.hidden !== !s.ordPriority) this.schedEl.hidden = !s.ordPriority;

@@ -95,6 +95,22 @@ export interface SchemaActivation {
   conflicts: number;
 }
 
+/**
+ * The schema that ended last (the Active schemas' `none` says which, when and why: a schema that
+ * ended is not just gone from the list). `how`: `deactivated` (ORD's `deactivate` line of a periodic
+ * schema), `undone` (a supervisor's `undo: deactivate schema S (event schema)`), `ord-exit` (ORD's
+ * exit or crash record ended its periodic schemas), `ord-gone` (ORD's log ends with no exit record:
+ * shown ended at its last record, MonitorModel's ordGone).
+ */
+export interface EndedSchema {
+  name: string;
+  kind: 'periodic' | 'event';
+  t: Ns;
+  how: 'deactivated' | 'undone' | 'ord-exit' | 'ord-gone';
+  /** `SUP.F.R` that had activated it, when known. */
+  by?: string;
+}
+
 /** Response-time histogram buckets: 8 per decade from 1 µs to 10 s, plus under/overflow. */
 export const HIST_BUCKETS = 58;
 export const HIST_MIN_NS = 1e3;
@@ -221,6 +237,8 @@ export interface MonitorState {
   namesPastBound: number;
   /** ORD's `priority` record (`SCHED_FIFO 90`, `nice 1 (priority 90)`): whether the run was real-time; '' before it. */
   ordPriority: string;
+  /** The schema that ended last, if any did (EndedSchema). */
+  lastEnded?: EndedSchema;
 }
 
 /**

@@ -4,7 +4,7 @@
  * without a page (panel-text.test.ts).
  */
 import { durationText, flowWaitsLine, priorityText, readableCause, SIMULATED_FLOWS_WHY, waitTotalsText, type FlowWaitTotals } from '@contract-studio/build-service/trace';
-import { MAX_NAMES, quantileBoundNs, type FlowCount, type KeptRequests, type ModuleState, type PeriodicState, type RuleState } from './monitor-state.js';
+import { MAX_NAMES, quantileBoundNs, type EndedSchema, type FlowCount, type KeptRequests, type ModuleState, type MonitorState, type PeriodicState, type RuleState } from './monitor-state.js';
 
 /** `+2.010325 s`: a time of the run (ns since its first record). */
 export const fmtT = (ns: number): string => `+${(ns / 1e9).toFixed(6)} s`;
@@ -238,4 +238,35 @@ export function notReleasedText(live: boolean, noRecords: boolean): string {
  */
 export function lateReleasesText(n: number): string {
   return n ? ` · ${n} ${n === 1 ? 'cycle' : 'cycles'} released past CRITICAL_DELAY (ORD itself late, no ORD:0)` : '';
+}
+
+/**
+ * The Active schemas' row when none is active: `none`, and once a schema has ended (state.lastEnded),
+ * which one, when and why, so that an end reads as an end and not as a schema that never ran:
+ * `none · schemaCommande1 (periodic) deactivated at +3.500000 s: SUP.action.SECOND, which activated
+ * it, became inactive ← its function stopped`; an event schema `undone by SUP`; ORD's end
+ * `ended with ORD (its exit record)`, or `shown ended: ORD's log ends there with no exit record`.
+ */
+export function noActiveSchemaText(s: Pick<MonitorState, 'lastEnded' | 'supervisors'>): string {
+  const e = s.lastEnded;
+  if (!e) return 'none';
+  const what = `${e.name} (${e.kind === 'event' ? 'event schema' : e.kind})`;
+  const at = fmtT(e.t);
+  switch (e.how) {
+    case 'ord-exit': return `none · ${what} ended with ORD at ${at} (its exit record)`;
+    case 'ord-gone': return `none · ${what} shown ended at ${at}: ORD's log ends there with no exit record (killed?); whether it ran on is unknown`;
+    default: {
+      const verb = e.how === 'undone' ? `undone by ${e.by?.split('.')[0] ?? 'its supervisor'}` : 'deactivated by ORD';
+      return `none · ${what} ${verb} at ${at}${endedRuleText(s, e)}`;
+    }
+  }
+}
+
+/** `: SUP.F.R, which activated it, became inactive ← cause` when that rule's last change, by the schema's end, made it inactive; else ''. */
+function endedRuleText(s: Pick<MonitorState, 'supervisors'>, e: EndedSchema): string {
+  const dot = e.by?.indexOf('.') ?? -1;
+  if (dot <= 0) return e.by ? ` (activated by ${e.by})` : '';
+  const rule = s.supervisors.get(e.by!.slice(0, dot))?.rules.get(e.by!.slice(dot + 1));
+  if (!rule || rule.active || rule.since > e.t) return ` (activated by ${e.by})`;
+  return `: ${e.by}, which activated it, became inactive ← ${readableCause(rule.cause).slice(0, 120)}`;
 }
