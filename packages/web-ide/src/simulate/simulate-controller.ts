@@ -11,13 +11,12 @@ import type { LspClient } from '../lsp/lsp-client.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { isContract } from '../workspace/file-kinds.js';
 import type { MonitorController } from '../monitor/monitor-controller.js';
-import { MonitorModel } from '../monitor/monitor-model.js';
 import { readSupervisorSymbols } from '../monitor/supervisor-symbols.js';
 import type { SimulateResponse } from '../../server/api-types.js';
 import { formatTime } from '@contract-studio/language/scenario';
 import { ScenarioSession, type SchedulerFigures } from './scenario-session.js';
 import { SimulatePanel } from './simulate-panel.js';
-import { stepsToTrace } from '@contract-studio/simulator/trace';
+import { simulationModel } from './simulation-model.js';
 import { STEP_INPUT_FILE } from './step-input.js';
 import { shellWord } from '../util/shell-word.js';
 
@@ -188,10 +187,7 @@ export class SimulateController {
       const failed = r.failures.map((f) => `line ${f.line}: ${f.message}`);
       if (r.trimmed) failed.push(r.trimmed.message);
       this.panel.showMessage(r.error ?? `simulated to ${formatTime(r.steps.at(-1)?.timeNs ?? 0)} in ${r.ms} ms (${r.eventsProcessed} engine inputs)`, r.error || failed.length ? 'error' : 'info', failed);
-      const model = new MonitorModel();
-      model.pushAll(stepsToTrace(r.steps));
-      // the session stands at its own time, maybe past its last record: the Monitor's clock says it
-      if (model.t0 !== undefined) model.holdUntil(this.session.nowNs - model.t0);
+      const model = simulationModel(r.steps, this.session.nowNs);
       this.lastShown = model.live;
       // an answer keeps 200,000 records of all steps (the harness 100,000 of each kind a step): what was left out is said
       const dropped = r.steps.reduce((n, s) => n + (s.dropped ?? 0), 0);
