@@ -59,18 +59,36 @@ function firstRecord(text: string): { mono: bigint; wallMs: number } | undefined
 }
 
 /**
- * Applies the launcher's end lines of job to `model`, the replay of its logs `files`: each at its
- * wall time less that of the run's first record (the earliest first record of the logs).
+ * The launcher's lines of a job on the records' clock (mono_ns, as a logs folder's
+ * contract-launch.log gives them): each at its wall time less that of the run's first record (the
+ * earliest first record of the logs `files`: both are the host's clock), from that record's
+ * mono_ns. None when no log begins with a record (no time line to put them on). The one mapping of
+ * a job's lines, for the Monitor's replay of its logs (applyLauncherLines) and the Timeline's
+ * (gone-activations.ts).
  */
-export function applyLauncherLines(model: MonitorModel, files: readonly LogFile[], lines: readonly LauncherLine[] | undefined): void {
-  if (!lines?.length) return;
+export function launcherLinesOnRecordClock(files: readonly LogFile[], lines: readonly LauncherLine[] | undefined): Array<{ monoNs: string; line: string }> {
+  if (!lines?.length) return [];
   let first: { mono: bigint; wallMs: number } | undefined;
   for (const f of files) {
     const r = firstRecord(f.pieces ? f.pieces[0] ?? '' : f.text);
     if (r && (!first || r.mono < first.mono)) first = r;
   }
-  if (!first) return;
-  for (const l of lines) model.launcherLine(l.line, (l.wallMs - first.wallMs) * 1e6);
+  if (!first) return [];
+  const out: Array<{ monoNs: string; line: string }> = [];
+  for (const l of lines.slice(0, MAX_LINES)) {
+    if (typeof l?.line !== 'string' || !Number.isFinite(l.wallMs)) continue;
+    const mono = first.mono + BigInt(Math.round((l.wallMs - first.wallMs) * 1e6));
+    out.push({ monoNs: String(mono < 0n ? 0n : mono), line: l.line });
+  }
+  return out;
+}
+
+/**
+ * Applies the launcher's end lines of job to `model`, the replay of its logs `files`: each at its
+ * time on the records' clock (launcherLinesOnRecordClock), on the run's time line.
+ */
+export function applyLauncherLines(model: MonitorModel, files: readonly LogFile[], lines: readonly LauncherLine[] | undefined): void {
+  applyFolderLauncherLines(model, launcherLinesOnRecordClock(files, lines));
 }
 
 /**

@@ -2,9 +2,10 @@
  * The Timeline's bars of modules the launcher's own end lines say ended (docs/ide.md "Timeline"): a
  * module killed from outside (SIGKILL) writes no `run_finished`, so its last bar would run to the
  * run's end; the launcher's line (`module SRT (pid 41) died by signal 9 (Killed)`, with its time on
- * the records' clock: a logs folder's contract-launch.log, GET /api/log-folder `launcherLines`, or a
- * trace file's `launcher_line` items) ends it at the line's time, said in its tooltip — as the
- * Monitor's replay of the same folder or file shows the module gone then. The same rule as there
+ * the records' clock: a logs folder's contract-launch.log, GET /api/log-folder `launcherLines`, a
+ * trace file's `launcher_line` items, or a Build & Run job's log lines put on that clock by
+ * launcherLinesOnRecordClock, monitor/job-launcher-lines.ts) ends it at the line's time, said in its
+ * tooltip — as the Monitor's replay of the same folder, file or job shows the module gone then. The same rule as there
  * (launcherGoneSign): only a line whose pid is the one the module's own `module_started` record gave.
  */
 import { LogClocks, parseRecordLine, type KnownRecord } from '@contract-studio/build-service/trace';

@@ -4,6 +4,7 @@ import type { Workspace } from '../workspace/workspace.js';
 import { inferPeriodOf, type Activation } from './activation-log.js';
 import { laneBars, lanesOf, lastTime, type LaneBar } from './timeline-bars.js';
 import { endGoneActivations, goneFromLauncherLines, type GoneAt } from './gone-activations.js';
+import { launcherLinesOnRecordClock } from '../monitor/job-launcher-lines.js';
 import { activationsFromLogs, localLogFolders, readTraceFile, readWorkspaceLogs, type LogFile, type RunLogs } from './run-logs.js';
 
 const SVG = 'http://www.w3.org/2000/svg';
@@ -108,7 +109,11 @@ export class TimelineView {
   }
 
   async update(): Promise<void> {
-    if (this.source.value === 'run' && this.run) return this.drawLogs(this.run.files, this.run.problems, `${this.run.label} left no CSV logs.`);
+    if (this.source.value === 'run' && this.run) {
+      // the launcher's lines of the job's log, put on the records' clock as the Monitor's replay of the job puts them
+      const lines = launcherLinesOnRecordClock(this.run.files, this.run.launcherLines);
+      return this.drawLogs(this.run.files, this.run.problems, `${this.run.label} left no CSV logs.`, lines);
+    }
     await this.workspace.refreshTree();
     const folders = localLogFolders(this.project(), this.workspace.allFiles());
     const held = folders.filter((f) => f.csvs.length);
@@ -143,7 +148,7 @@ export class TimelineView {
     this.drawLogs(files, [...problems, ...notRead], '', 'launcherLines' in listing ? listing.launcherLines : undefined);
   }
 
-  /** `launcherLines`: the launcher's end lines of a logs folder or trace file (gone-activations.ts). */
+  /** `launcherLines`: the launcher's end lines of a logs folder, a trace file or a job, on the records' clock (gone-activations.ts). */
   private drawLogs(files: LogFile[], problems: string[], emptyText: string, launcherLines?: readonly { monoNs: string; line: string }[]): void {
     if (!files.length && emptyText) {
       this.info.textContent = '';
