@@ -35,6 +35,8 @@ export class TimelineView {
   private readonly zoom: HTMLInputElement;
   private readonly source: HTMLSelectElement;
   private last: { acts: Activation[]; files: number; errors: string[]; gone?: readonly GoneAt[] } | undefined;
+  /** How many updates began: one that a later one overtook while it awaited the server draws nothing. */
+  private updates = 0;
   private run: RunLogs | undefined;
   /** Redraws the bars of the part of the timeline on screen (after a scroll). */
   private drawBars: (() => void) | undefined;
@@ -109,12 +111,17 @@ export class TimelineView {
   }
 
   async update(): Promise<void> {
+    // an update that awaits the server (the local logs) and ends after a later one began (the job's
+    // logs shown when it ended) draws nothing: the later one's drawing stands
+    const seq = ++this.updates;
+    const superseded = (): boolean => seq !== this.updates;
     if (this.source.value === 'run' && this.run) {
       // the launcher's lines of the job's log, put on the records' clock as the Monitor's replay of the job puts them
       const lines = launcherLinesOnRecordClock(this.run.files, this.run.launcherLines);
       return this.drawLogs(this.run.files, this.run.problems, `${this.run.label} left no CSV logs.`, lines);
     }
     await this.workspace.refreshTree();
+    if (superseded()) return;
     const folders = localLogFolders(this.project(), this.workspace.allFiles());
     const held = folders.filter((f) => f.csvs.length);
     // trace files of the project (`contract run --trace`): the logs they were written from (build-service trace/jsonl.ts)
@@ -124,6 +131,7 @@ export class TimelineView {
     if (this.source.value.startsWith('file:')) {
       // its launcher_line items (`contract run --trace`): a module killed from outside ended at the line's time, as in a folder's replay
       const { files, problems, launcherLines } = await readTraceFile(this.source.value.slice(5), (f) => f);
+      if (superseded()) return;
       return this.drawLogs(files, problems, `${this.source.value.slice(5)} holds no record.`, launcherLines);
     }
     const csvs = (held.find((f) => `local:${f.folder}` === this.source.value) ?? held[0])?.csvs ?? [];
@@ -138,8 +146,10 @@ export class TimelineView {
     // not show), as the Monitor reads it: a log left out is named with why
     const folder = (held.find((f) => `local:${f.folder}` === this.source.value) ?? held[0])!.folder;
     const listing = await api.logFolder(folder).catch((e: Error) => ({ logs: csvs, more: 0, max: 0, notRead: [`${folder} could not be listed (${e.message}): its logs the Explorer shows are read`], notReadCount: 1 }));
+    if (superseded()) return;
     // past the bound, ORD's log (the schemas' activations) is read first, not left out by name order
     const { files, problems: unread, partly } = await readWorkspaceLogs(listing.logs, (f) => f, undefined, { supervisors: new Set() });
+    if (superseded()) return;
     const problems = [...unread, ...partly];
     const notRead = [...listing.notRead];
     if (listing.notReadCount > listing.notRead.length) notRead.push(`${listing.notReadCount - listing.notRead.length} more entries that are no regular file`);

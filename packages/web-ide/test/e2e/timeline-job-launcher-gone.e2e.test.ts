@@ -44,15 +44,33 @@ describe.skipIf(!canBuild)("the Timeline's last Build & Run: a module SIGKILLed 
     await expect.poll(started, { timeout: 240_000 }).toBe(true);
     let pid: number | undefined;
     await expect.poll(() => (pid = modulePid(MODULE)), { timeout: 20_000 }).toBeDefined();
+    // the Timeline opened during the run reads the local logs: its read of the tree is held until
+    // the job's logs are shown. That read's end, later, must not draw the local logs over the job's
+    // (it did: the view said "No CSV logs in logs/ ..." with the last Build & Run selected)
+    let releaseTree!: () => void;
+    const treeHeld = new Promise<void>((r) => (releaseTree = r));
+    let held = 0;
+    let heldDone: Promise<void> | undefined;
+    await page.route('**/api/tree', (route) => {
+      if (held++ === 0) heldDone = treeHeld.then(() => route.continue());
+      else void route.continue();
+    });
+    await page.locator('#btn-timeline').click();
+    await page.locator('.timeline-view').waitFor();
+    await expect.poll(() => held, { timeout: 10_000 }).toBeGreaterThan(0);
     await new Promise((r) => setTimeout(r, 1000));
     expect(await status()).toBe('running');
     process.kill(pid!, 'SIGKILL');
     await expect.poll(status, { timeout: 60_000 }).not.toBe('running');
 
-    // the job's CSV logs fetched when it ended (the page says so), then the Timeline opened: its source is the last Build & Run
+    // the job's CSV logs fetched when it ended (the page says so): the Timeline's source is the last Build & Run
     await page.locator('.toast', { hasText: 'Run logs of' }).first().waitFor({ timeout: 60_000 });
-    await page.locator('#btn-timeline').click();
-    await page.locator('.timeline-view').waitFor();
+    await expect.poll(() => page.locator('.timeline-source').inputValue(), { timeout: 30_000 }).toBe('run');
+    await page.locator('.timeline-view .gone-mark').first().waitFor({ state: 'attached', timeout: 20_000 });
+    releaseTree();
+    await heldDone;
+    await page.unroute('**/api/tree');
+    await new Promise((r) => setTimeout(r, 1500)); // the held read ends, and its update with it
     await expect.poll(() => page.locator('.timeline-source').inputValue(), { timeout: 30_000 }).toBe('run');
     const info = () => page.locator('.timeline-view .muted').first().textContent();
     const header = new RegExp(`· gone: ${MODULE} at (\\d+\\.\\d{3}) ms \\(contract-launch: module ${MODULE} \\(pid \\d+\\) died by signal 9 \\(Killed\\)\\) ·`);
