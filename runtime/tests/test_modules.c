@@ -89,6 +89,38 @@ void test_msc_request_loop(void)
     h_teardown();
 }
 
+/* The cpu_ns of a release's run_finished of the test module C1, or -2 when there is none. */
+static long long run_cpu_ns(const char *log, int activation)
+{
+    char key[80];
+    snprintf(key, sizeof key, ",C1,run_finished,,,0,activation=%d cpu_ns=", activation);
+    const char *at = log ? strstr(log, key) : NULL;
+    return at ? strtoll(at + strlen(key), NULL, 10) : -2;
+}
+
+/* run_finished's cpu_ns is the CPU time of the run's thread, not the run's length: a run burning
+   20 ms of CPU says about 20 ms (15 to 60: a real process, its own reads of the clock and its
+   mailbox included), a run asleep for 20 ms says under 5 ms (docs/runtime-api.md "A release's CPU time"). */
+void test_run_cpu_time(void)
+{
+    REQUIRE(h_setup("runcpu") == 0);
+    pid_t pid = h_spawn_module("C1", "C1");
+    REQUIRE(pid > 0);
+    REQUIRE(set_param("C1", 32, 20));
+    CHECK(run_once("C1", 1));
+    REQUIRE(set_param("C1", 64, 20));
+    CHECK(run_once("C1", 2));
+    CHECK(SendKill("C1", ACK_KILLED, 3) == CONTRACT_OK);
+    CHECK(h_wait_ack("C1", 3, ACK_KILLED, 2000, NULL));
+    CHECK(h_wait_exit(pid, 2000) == 0);
+    char *log = h_read_logs("C1_");
+    long long burnt = run_cpu_ns(log, 1), slept = run_cpu_ns(log, 2);
+    CHECK_MSG(burnt >= 15000000 && burnt <= 60000000, "a run burning 20 ms of CPU said cpu_ns=%lld", burnt);
+    CHECK_MSG(slept >= 0 && slept < 5000000, "a run asleep for 20 ms said cpu_ns=%lld", slept);
+    free(log);
+    h_teardown();
+}
+
 void test_msc_setparam_event(void)
 {
     REQUIRE(h_setup("mscev") == 0);

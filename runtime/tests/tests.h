@@ -7,6 +7,7 @@ void test_tools_serialize(void);
 void test_tools_bool_enum(void);
 void test_ext_types_round_trip(void);
 void test_msc_request_loop(void);
+void test_run_cpu_time(void);
 void test_msc_setparam_event(void);
 void test_stop_running_cycle(void);
 void test_data_periodicity(void);
@@ -69,6 +70,7 @@ static const TestCase ALL_TESTS[] = {
     { "tools_serialize", test_tools_serialize },
     { "tools_bool_enum", test_tools_bool_enum },
     { "msc_request_loop", test_msc_request_loop },
+    { "run_cpu_time", test_run_cpu_time },
     { "msc_setparam_event", test_msc_setparam_event },
     { "stop_running_cycle", test_stop_running_cycle },
     { "data_periodicity", test_data_periodicity },

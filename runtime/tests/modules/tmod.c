@@ -6,7 +6,9 @@
  *   port 3: the parameter it accepted (TestParam); port 4: a refused setparam (no data)
  * Behaviour flags in TestParam.flags: 1 post an event each run, 2 abort() at the next run,
  * 4 report inputs each run, 8 read inputs with GetLatestData, 16 each state after the first
- * sleeps 100 ms (a module busy in its own code reads its mailbox once per state). TestParam.run_ms: how long a run lasts (interruptible by STOP).
+ * sleeps 100 ms (a module busy in its own code reads its mailbox once per state), 32 the run burns
+ * run_ms of its thread's CPU time in one state (a busy loop on CLOCK_THREAD_CPUTIME_ID), 64 the run
+ * sleeps run_ms in one state. TestParam.run_ms: how long a run lasts (interruptible by STOP).
  * $TMOD_CRASH_NAME equal to the module name: abort() 200 ms after start-up.
  * $TMOD_CRASH_LOG equal to `NAME:how`: at its first START the module named logs 5 `crash_test`
  * records (detail `before crash 1`..`5`) and crashes at once (well inside the log's flush delay):
@@ -34,6 +36,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
+#include <time.h>
 #include <unistd.h>
 #include "tmod.h"
 
@@ -127,6 +130,14 @@ static void crash_after_logging(const char *how)
     null_store();
 }
 
+/* The calling thread's CPU time in ms (CLOCK_THREAD_CPUTIME_ID). */
+static double thread_cpu_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
+}
+
 static void exec_state(int *state)
 {
     if (*state == 0) {
@@ -147,6 +158,17 @@ static void exec_state(int *state)
         *state = 1;
     } else {
         if (param.flags & 16) usleep(100000); /* busy in its own code between two reads */
+        if (param.flags & 32) { /* run_ms of its own CPU time, then the run's end */
+            double c0 = thread_cpu_ms();
+            while (thread_cpu_ms() - c0 < (double)param.run_ms) {}
+            *state = -1;
+            return;
+        }
+        if (param.flags & 64) { /* run_ms asleep: no CPU time, then the run's end */
+            usleep((useconds_t)param.run_ms * 1000);
+            *state = -1;
+            return;
+        }
         if (GetTime() - run_start >= param.run_ms * 1000000L) *state = -1;
     }
 }
