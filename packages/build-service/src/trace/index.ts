@@ -34,3 +34,4 @@ export { UndosToOrd, type UnservedUndos } from './undos-to-ord.js';
 export { receiverGone, type ReceiverGoneWay } from './receiver-gone.js';
 export type { LauncherToldEnd } from './ended-mid-run.js';
 export { ModuleCpu, type ModuleCpuFigure } from './module-cpu.js';
+export { EngineCpu, type EngineCpuFigure } from './engine-cpu.js';

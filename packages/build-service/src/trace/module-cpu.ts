@@ -5,7 +5,9 @@
  * of that schema's PERIOD. The figure for sizing a period and a CRITICAL_DELAY from the worst-case
  * execution time of a module's exec region, which ORD's `response_ns` (tick to ORD's read of the
  * ack: waiting included) is not. Only the runs ORD released and the module ended with ACK_FINISHED
- * count: ORD's and the supervisors' own runs (their whole life) and runs a STOP ended are none.
+ * count: ORD's and the supervisors' own runs (their whole life: engine-cpu.ts tells them) and runs a
+ * STOP ended are none. A release whose `cpu_ns` is -1 (its thread's CPU clock could not be read) is
+ * in no quantile: the module's line counts it as a release without a CPU time.
  */
 import { DurationQuantiles } from './duration-quantiles.js';
 import { durationText } from './duration-text.js';
@@ -18,11 +20,14 @@ export interface ModuleCpuFigure {
     module: string;
     /** Its releases whose run_finished said a CPU time. */
     releases: number;
-    maxNs: number;
-    p99Ns: number;
+    /** Its releases whose run_finished said `cpu_ns=-1` (the thread's CPU clock could not be read): in no figure below; absent when none. */
+    releasesWithoutCpu?: number;
+    /** The figures of the releases that said a CPU time: absent when none did. */
+    maxNs?: number;
+    p99Ns?: number;
     /** The release that took maxNs (the first such). */
-    maxSchema: string;
-    maxCycle: number;
+    maxSchema?: string;
+    maxCycle?: number;
     /** That schema's PERIOD, from the ticks of two of its cycles ORD released (absent when it released one cycle only). */
     periodNs?: number;
     /** maxNs / periodNs. */
@@ -33,7 +38,7 @@ export interface ModuleCpuFigure {
 const FOLLOWED = 4096;
 
 interface Released { schema: string; cycle: number }
-interface Cpu { q: DurationQuantiles; maxAt: Released }
+interface Cpu { q: DurationQuantiles; maxAt?: Released; unknown: number }
 
 export class ModuleCpu {
     /** Each module's last release by ORD (ORD writes its `ord_release` before it sends it). */
@@ -69,7 +74,11 @@ export class ModuleCpu {
         let c = this.cpu.get(k.module);
         if (!c) {
             if (this.cpu.size >= FOLLOWED) return;
-            this.cpu.set(ownString(k.module), (c = { q: new DurationQuantiles(), maxAt: r }));
+            this.cpu.set(ownString(k.module), (c = { q: new DurationQuantiles(), unknown: 0 }));
+        }
+        if (ns < 0) { // -1: the thread's CPU clock could not be read (mailbox.c)
+            c.unknown++;
+            return;
         }
         if (ns > c.q.maxNs || c.q.count === 0) c.maxAt = r;
         c.q.add(ns);
@@ -78,8 +87,11 @@ export class ModuleCpu {
     /** The modules' figures, in name order. */
     figures(): ModuleCpuFigure[] {
         return [...this.cpu].sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0)).map(([module, c]) => {
+            const f: ModuleCpuFigure = { module, releases: c.q.count };
+            if (c.unknown) f.releasesWithoutCpu = c.unknown;
+            if (!c.maxAt) return f;
+            Object.assign(f, { maxNs: c.q.maxNs, p99Ns: c.q.quantileNs(0.99), maxSchema: c.maxAt.schema, maxCycle: c.maxAt.cycle });
             const periodNs = this.ticks.get(c.maxAt.schema)?.periodNs;
-            const f: ModuleCpuFigure = { module, releases: c.q.count, maxNs: c.q.maxNs, p99Ns: c.q.quantileNs(0.99), maxSchema: c.maxAt.schema, maxCycle: c.maxAt.cycle };
             if (periodNs) {
                 f.periodNs = periodNs;
                 f.maxShareOfPeriod = c.q.maxNs / periodNs;
@@ -90,14 +102,23 @@ export class ModuleCpu {
 
     /**
      * `module CTL: CPU per release max 1.25 ms (velocityLoop cycle 412, 12.5 % of its PERIOD 10 ms),
-     * p99 1.1 ms, 5,000 releases`, one line per module ORD released whose runs said their CPU time.
+     * p99 1.1 ms, 5,000 releases`, one line per module ORD released whose runs said their CPU time;
+     * `, 3 releases without a CPU time` after it when some said `cpu_ns=-1` (a module none of whose
+     * releases said one: `module CTL: 3 releases without a CPU time (its thread's CPU clock could not be read)`).
      */
     lines(): string[] {
         return this.figures().map((f) => {
+            const unknown = f.releasesWithoutCpu ? `${count(f.releasesWithoutCpu)} without a CPU time` : '';
+            if (f.maxNs === undefined) return `module ${f.module}: ${unknown} (its thread's CPU clock could not be read)`;
             const share = f.periodNs ? `, ${shareText(f.maxShareOfPeriod!)} of its PERIOD ${durationText(f.periodNs)}` : '';
-            return `module ${f.module}: CPU per release max ${durationText(f.maxNs)} (${f.maxSchema} cycle ${f.maxCycle}${share}), p99 ${durationText(f.p99Ns)}, ${f.releases.toLocaleString('en-US')} release${f.releases === 1 ? '' : 's'}`;
+            return `module ${f.module}: CPU per release max ${durationText(f.maxNs)} (${f.maxSchema} cycle ${f.maxCycle}${share}), p99 ${durationText(f.p99Ns!)}, ${count(f.releases)}${unknown ? `, ${unknown}` : ''}`;
         });
     }
+}
+
+/** `1 release`, `5,000 releases`. */
+function count(n: number): string {
+    return `${n.toLocaleString('en-US')} release${n === 1 ? '' : 's'}`;
 }
 
 /** `12.5 %`, `0.04 %`: a share with 3 significant digits at most. */

@@ -14,6 +14,7 @@ import { missedTicksOf, skippedReleasesOf } from './ord-counts.js';
 import { durationText } from './duration-text.js';
 import { ReleaseLateness } from './release-lateness.js';
 import { ModuleCpu, type ModuleCpuFigure } from './module-cpu.js';
+import { EngineCpu, type EngineCpuFigure } from './engine-cpu.js';
 import { UndosToOrd } from './undos-to-ord.js';
 import { DataFlowUse } from './data-flow-use.js';
 import { EventWaits } from './event-waits.js';
@@ -461,6 +462,8 @@ export class StoryTeller {
     private readonly lateness = new Map<string, ReleaseLateness>();
     /** Each released module's CPU time per release (run_finished's cpu_ns): moduleCpuLines. */
     readonly moduleCpu = new ModuleCpu();
+    /** ORD's and each supervisor's own CPU time in their runs (run_finished's cpu_ns): moduleCpuLines. */
+    readonly engineCpu = new EngineCpu();
     /** ORD's data flows: those connected long enough that delivered nothing, or far less than read; the event flows supervisors connected that delivered nothing (flowLines). */
     private readonly dataFlows = new DataFlowUse();
     /** Event flows whose posts waited for room in their subscriber's full mailbox (flowLines). */
@@ -489,10 +492,12 @@ export class StoryTeller {
     /**
      * The records told are a simulation's (a trace file's `sim_start`): its virtual modules run no
      * code, so the flows' use (data values read, events modules post) is not told as findings of
-     * module code (data-flow-use.ts: one line says why).
+     * module code (data-flow-use.ts: one line says why), and no engine's CPU time is measured
+     * (engine-cpu.ts tells none).
      */
     simulation(): void {
         this.dataFlows.simulated();
+        this.engineCpu.simulated();
     }
 
     /**
@@ -521,6 +526,7 @@ export class StoryTeller {
         if (k.kind === 'supervisor') this.followAction(k, what);
         if (k.kind === 'ack_sent' || k.kind === 'run_finished') this.followAck(k);
         this.moduleCpu.see(k);
+        this.engineCpu.see(k);
         this.undos.see(k);
         this.endedMidRun.see(k);
         this.dataFlows.see(k);
@@ -887,9 +893,14 @@ export class StoryTeller {
         return lines;
     }
 
-    /** One line per module ORD released whose runs said their CPU time, after the schema lines (module-cpu.ts). */
+    /** One line per module ORD released whose runs said their CPU time, after the schema lines (module-cpu.ts), then ORD's and each supervisor's own CPU (engine-cpu.ts). */
     moduleCpuLines(): string[] {
-        return this.moduleCpu.lines();
+        return [...this.moduleCpu.lines(), ...this.engineCpu.lines()];
+    }
+
+    /** ORD's and the supervisors' own CPU as data (`contract run --format json`'s `engineCpu`). */
+    engineCpuFigures(): EngineCpuFigure[] {
+        return this.engineCpu.figures();
     }
 
     /** The same as data, in module order (`contract run --format json`'s `moduleCpu`). */

@@ -302,10 +302,10 @@ export const runCommand: Command = {
         const leftOut = artifacts?.skipped ?? [];
         const failures = moduleFailures(outcome.runLines, outcome.result.limitHit, realtime);
         const figures = opts.format !== 'json' ? null : teller && trace ? runFiguresOf(teller) : await runFigures(logsDir, logs).catch(() => null);
-        const schemas = figures?.schemas ?? null, eventHandling = figures?.eventHandling ?? null, moduleCpu = figures?.moduleCpu ?? null;
+        const schemas = figures?.schemas ?? null, eventHandling = figures?.eventHandling ?? null, moduleCpu = figures?.moduleCpu ?? null, engineCpu = figures?.engineCpu ?? null;
         const extra = {
             logsDir: logs.length ? logsDir : null, logs, logsRefused: savedLogs.refused, previousLogs: savedLogs.movedAside,
-            logsLeftOut: leftOut, moduleFailures: failures, runDirLeftovers: leftovers, trace, schemas, eventHandling, moduleCpu, output: outcome.runLines,
+            logsLeftOut: leftOut, moduleFailures: failures, runDirLeftovers: leftovers, trace, schemas, eventHandling, moduleCpu, engineCpu, output: outcome.runLines,
         };
         const problems = problemLines(outcome.result.issues ?? [], failures, realtime);
         const notSaved = savedLogs.refused.map((r) => `log ${r.replace(/: /, ' not written: ')}`);

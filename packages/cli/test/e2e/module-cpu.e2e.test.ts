@@ -54,4 +54,26 @@ describe("a release's CPU time on a real run (bwrap)", () => {
         expect(fig.map((o) => o.module)).not.toContain('ORD');
         expect(fig.map((o) => o.module)).not.toContain('SUP');
     });
+
+    it("tells ORD's and the supervisors' own CPU, from their runs' run_finished cpu_ns, in the story and as engineCpu", () => {
+        // the records: ORD's run (started by SUP) and each supervisor's end at the stop with their thread's CPU
+        const logs = readLogs(scratch.logs);
+        for (const engine of ['ORD', 'SUP', 'GLB']) {
+            const ends = logs.filter((r) => r.module === engine && r.event === 'run_finished');
+            expect(ends.length, engine).toBeGreaterThanOrEqual(1);
+            for (const r of ends) expect(r.detail, engine).toMatch(/^activation=\d+ cpu_ns=\d+ (STOP|KILL)$/);
+        }
+        expect(story.stdout).toMatch(/^ORD \(scheduler\): own CPU [\d.]+ (ns|µs|ms|s) in 1 run of [\d.]+ s \([\d.e-]+ % of one CPU\)$/m);
+        expect(story.stdout).toMatch(/^supervisor SUP: own CPU [\d.]+ (ns|µs|ms|s) in 1 run of [\d.]+ s \([\d.e-]+ % of one CPU\)$/m);
+        const engines = (JSON.parse(run.stdout) as { engineCpu: Array<{ module: string; role: string; runs: number; cpuNs: number; runNs: number; shareOfCpu: number }> }).engineCpu;
+        expect(engines.map((e) => [e.module, e.role])).toEqual([['ORD', 'scheduler'], ['GLB', 'supervisor'], ['SUP', 'supervisor']]);
+        for (const e of engines) {
+            expect(e.runs).toBe(1);
+            expect(e.cpuNs).toBeGreaterThan(0);
+            // a run of at least a second (ORD's: from SUP's START, MAA's 2 s mission first, to the stop of the 4 s run), a small share of one CPU
+            expect(e.runNs).toBeGreaterThan(1e9);
+            expect(e.shareOfCpu).toBeGreaterThan(0);
+            expect(e.shareOfCpu).toBeLessThan(0.5);
+        }
+    });
 });
