@@ -62,9 +62,6 @@ function moduleState(s: MonitorState, name: string, t: Ns): ModuleState | undefi
   return entry(s, s.modules, name, () => ({ running: false, alive: true, runs: 0, since: t }));
 }
 
-/** Modules of a periodic schema whose CPU per release its block shows, at most. */
-export const RELEASED_MODULES_SHOWN = 16;
-
 function periodic(s: MonitorState, schema: string): PeriodicState | undefined {
   return entry(s, s.periodic, schema, () => ({
     releases: 0, modules: [], lastCycle: -1, lastRelease: 0, completions: 0, lastResponseNs: 0, maxResponseNs: 0, sumResponseNs: 0,
@@ -153,7 +150,7 @@ export function foldRelease(s: MonitorState, schema: string | undefined, cycle: 
   const p = periodic(s, schema);
   if (!p) return;
   p.releases++;
-  if (module && p.modules.length < RELEASED_MODULES_SHOWN && !p.modules.includes(module)) p.modules.push(module);
+  if (module && p.modules.length < MAX_NAMES && !p.modules.includes(module)) p.modules.push(module);
   if (cycle !== undefined && cycle !== p.lastCycle && releaseNs !== undefined && tickNs !== undefined && releaseNs >= tickNs) {
     // a cycle's first release: how late ORD sent it after its tick
     const late = releaseNs - tickNs;

@@ -52,6 +52,24 @@ describe("a module's CPU time per release (run_finished cpu_ns)", () => {
     }
   });
 
+  it('a schema releasing more modules than its block shows says how many more said their CPU time', () => {
+    // 20 modules M00..M19, each released once in cycle 0 of schema wide, each its own CPU time (k ms + 1 ms)
+    const names = Array.from({ length: 20 }, (_, k) => `M${String(k).padStart(2, '0')}`);
+    const ord = [`1000000000,${W},ORD,module_started,,,0,pid=39 priority=50`, ...names.map((m, k) => rel(1100000000 + k * 1000, m, 0, k + 1).replace('schema=loop', 'schema=wide'))];
+    const logs = [{ name: 'ORD_1.csv', lines: ord }, ...names.map((m, k) => ({ name: `${m}_1.csv`, lines: [
+      `${1100000500 + k * 1000},${W},${m},run_started,ORD,,0,activation=1`,
+      `${1150000000 + k * 1000},${W},${m},run_finished,,,0,activation=1 cpu_ns=${(k + 1) * 1_000_000} ACK_FINISHED`,
+    ] }))];
+    for (const m of readThreeWays(logs, {})) {
+      const end = m.stateAt(t(1150019000))!;
+      const wide = end.periodic.get('wide')!;
+      const text = moduleCpuText(wide.modules, end.modules);
+      expect(text.startsWith(' · CPU per release: M00 last 1 ms, max 1 ms; M01 last 2 ms, max 2 ms;')).toBe(true);
+      expect(text.endsWith('; M15 last 16 ms, max 16 ms; 4 more modules not shown: contract trace tells each')).toBe(true);
+      expect(text).not.toContain('M16');
+    }
+  });
+
   it('says nothing of a module whose runs said no CPU time', () => {
     expect(moduleCpuText([], new Map())).toBe('');
     expect(moduleCpuText(['MSA', 'MSC'], new Map([['MSA', {}], ['MSC', { lastCpuNs: 5_000_000, maxCpuNs: 5_000_000 }]]))).toBe(' · CPU per release: MSC last 5 ms, max 5 ms');

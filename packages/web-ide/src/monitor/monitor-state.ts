@@ -123,7 +123,7 @@ export interface MissMark {
 
 export interface PeriodicState {
   releases: number;
-  /** The modules ORD released in it, the first RELEASED_MODULES_SHOWN: the schema's block shows their CPU per release. */
+  /** The modules ORD released in it (MAX_NAMES at most), in the order of their first release: the schema's block shows their CPU per release (moduleCpuText). */
   modules: string[];
   lastCycle: number;
   /** Release time of the last release, ns since the start. */

@@ -198,18 +198,24 @@ export function releaseLatenessText(p: Pick<PeriodicState, 'lateHistogram' | 'la
   return ` · release lateness p50 ≤ ${q(0.5)}, p99 ≤ ${q(0.99)}, max ${durationText(p.maxLateNs)}`;
 }
 
+/** Modules of a periodic schema whose CPU per release its block shows, at most: it says how many more there are. */
+export const RELEASED_MODULES_SHOWN = 16;
+
 /**
  * ` · CPU per release: CTL last 410 µs, max 1.25 ms; EST last 90 µs, max 120 µs`: the CPU time of
  * the schema's modules' own thread per release (their run_finished's `cpu_ns`: the exec region's
- * execution time, waiting not included, unlike the response time), in the order ORD released them;
- * '' when none said it (logs of older versions).
+ * execution time, waiting not included, unlike the response time), in the order ORD released them,
+ * the first RELEASED_MODULES_SHOWN, then how many more said theirs (`; 4 more modules not shown:
+ * contract trace tells each`); '' when none said it (logs of older versions).
  */
 export function moduleCpuText(released: readonly string[], modules: ReadonlyMap<string, Pick<ModuleState, 'lastCpuNs' | 'maxCpuNs'>>): string {
   const said = released.flatMap((name) => {
     const m = modules.get(name);
     return m?.lastCpuNs === undefined ? [] : [`${name} last ${durationText(m.lastCpuNs)}, max ${durationText(m.maxCpuNs ?? m.lastCpuNs)}`];
   });
-  return said.length ? ` · CPU per release: ${said.join('; ')}` : '';
+  const more = said.length - RELEASED_MODULES_SHOWN;
+  const notShown = more > 0 ? `; ${more} more ${more === 1 ? 'module' : 'modules'} not shown: contract trace tells each` : '';
+  return said.length ? ` · CPU per release: ${said.slice(0, RELEASED_MODULES_SHOWN).join('; ')}${notShown}` : '';
 }
 
 /**
