@@ -76,6 +76,14 @@ describe("ORD's and the supervisors' own CPU (their runs' cpu_ns)", () => {
         ]);
     });
 
+    it('is told of no simulation (its engines run no measured code)', () => {
+        const sim = new StoryTeller();
+        sim.simulation();
+        for (const r of parseTrace(logs())) sim.tell(r);
+        expect(sim.engineCpuFigures()).toEqual([]);
+        expect(sim.moduleCpuLines()).toEqual(['module MSC: CPU per release max 4 ms (loop cycle 57, 40 % of its PERIOD 10 ms), p99 1.99 ms, 100 releases']);
+    });
+
     it('sums a supervisor\'s runs and counts those without a CPU time; a module no ORD released and no supervisor is none of them', () => {
         const sup = [`1000000000,${W},SUP,module_started,,,0,pid=38 priority=40`, `1000000050,${W},SUP,supervisor,,,0,function action() started`,
             `1000000000,${W},SUP,run_started,GLB,,0,activation=1`, `1500000000,${W},SUP,run_finished,GLB,,0,activation=1 cpu_ns=5000000 STOP`,
