@@ -21,6 +21,8 @@ export class Explorer {
   private active: string | undefined;
   private readonly list: HTMLElement;
   private readonly byPath = new Map<string, TreeEntry>();
+  /** The rows drawn last, by path, with what they show (render keeps those that show the same). */
+  private drawn = new Map<string, { look: string; row: HTMLElement }>();
   /** Shown instead of the tree when it is empty (outside it: a tree holds tree items only). */
   private readonly empty: HTMLElement;
   private readonly roving: RovingFocus;
@@ -116,35 +118,67 @@ export class Explorer {
     return i < 0 ? '' : s.path.slice(0, i);
   }
 
+  /**
+   * Draws the rows. A row whose look is unchanged (same entry name, depth, kind, open, active,
+   * selected) is the same element as before, and rows are only moved, added or removed where the
+   * tree changed: a refresh that changes nothing (each file event, Generate All's writes, a tab
+   * switch) leaves the rows in place, so a click whose press and release straddle it still lands
+   * on its row (a row replaced between them lost the click: its release fell on a new element).
+   */
   private render(): void {
     const rows: HTMLElement[] = [];
+    const drawn = new Map<string, { look: string; row: HTMLElement }>();
     this.byPath.clear();
     const walk = (entries: TreeEntry[], depth: number) => {
       for (const e of entries) {
         this.byPath.set(e.path, e);
         const isDir = e.type === 'dir';
         const open = this.expanded.has(e.path);
-        const icon = isDir ? (open ? '▾' : '▸') : '';
-        const kind = isDir ? (e.name === 'src-gen' ? 'gen-folder' : 'folder') : e.name.endsWith('.contract') ? 'cactal' : /\.(c|h)$/.test(e.name) ? 'c' : e.name.endsWith('.jsonl') ? 'trace' : 'other';
-        const glyph = isDir ? '' : kind === 'cactal' ? '◈' : kind === 'c' ? 'C' : kind === 'trace' ? '◉' : '≡'; // a trace file opens in the ◉ Monitor
-        const row = h('div', {
-          class: `tree-row ${kind}${e.path === this.active ? ' active' : ''}${e === this.selected || e.path === this.selected?.path ? ' selected' : ''}`,
-          role: 'treeitem', 'data-path': e.path, title: visibleText(e.truncated ? (e.children?.length ? `${e.path}: not all of its content is listed (past the listing's 50,000 entries)` : `${e.path}: its content is not listed (deeper than 64 folders, or past 50,000 entries)`) : e.path), style: `padding-left:${8 + depth * 14}px`, tabindex: -1,
-          'aria-level': depth + 1, 'aria-selected': e.path === this.active ? 'true' : 'false', 'aria-expanded': isDir ? String(open) : undefined,
-          onclick: () => this.click(e),
-        },
-          h('span', { class: 'twisty', 'aria-hidden': 'true' }, icon), h('span', { class: `file-glyph ${kind}`, 'aria-hidden': 'true' }, glyph), h('span', { class: 'tree-name' }, visibleText(e.name)),
-          h('span', { class: 'row-actions', 'aria-hidden': 'true' },
-            isDir ? h('span', { class: 'row-action', title: 'New file here', 'data-action': 'new-file', onclick: (ev: Event) => { ev.stopPropagation(); this.selected = e; this.onContextAction.fire({ action: 'new-file', entry: e }); } }, '+') : null,
-            h('span', { class: 'row-action', title: 'Rename', 'data-action': 'rename', onclick: (ev: Event) => { ev.stopPropagation(); this.selected = e; this.onContextAction.fire({ action: 'rename', entry: e }); } }, '✎'),
-            h('span', { class: 'row-action', title: 'Delete', 'data-action': 'delete', onclick: (ev: Event) => { ev.stopPropagation(); this.selected = e; this.onContextAction.fire({ action: 'delete', entry: e }); } }, '✕')));
+        const active = e.path === this.active;
+        const selected = e === this.selected || e.path === this.selected?.path;
+        const look = JSON.stringify([e.name, e.type, e.truncated ?? false, !!e.children?.length, depth, open, active, selected]);
+        const before = this.drawn.get(e.path);
+        const row = before?.look === look ? before.row : this.row(e, depth, open, active, selected);
+        drawn.set(e.path, { look, row });
         rows.push(row);
         if (isDir && open && e.children) walk(e.children, depth + 1);
       }
     };
     walk(this.entries, 0);
-    this.list.replaceChildren(...rows);
+    this.drawn = drawn;
+    let at = this.list.firstElementChild;
+    for (const row of rows) {
+      if (row === at) at = at.nextElementSibling;
+      else this.list.insertBefore(row, at);
+    }
+    while (at) {
+      const next = at.nextElementSibling;
+      at.remove();
+      at = next;
+    }
     this.empty.classList.toggle('hidden', rows.length > 0);
     this.roving.refresh();
+  }
+
+  /** One row; its handlers find its entry by path when they run (a kept row outlives the entry it was drawn from). */
+  private row(e: TreeEntry, depth: number, open: boolean, active: boolean, selected: boolean): HTMLElement {
+    const path = e.path;
+    const entry = () => this.byPath.get(path) ?? e;
+    const isDir = e.type === 'dir';
+    const icon = isDir ? (open ? '▾' : '▸') : '';
+    const kind = isDir ? (e.name === 'src-gen' ? 'gen-folder' : 'folder') : e.name.endsWith('.contract') ? 'cactal' : /\.(c|h)$/.test(e.name) ? 'c' : e.name.endsWith('.jsonl') ? 'trace' : 'other';
+    const glyph = isDir ? '' : kind === 'cactal' ? '◈' : kind === 'c' ? 'C' : kind === 'trace' ? '◉' : '≡'; // a trace file opens in the ◉ Monitor
+    const action = (name: 'rename' | 'delete' | 'new-file') => (ev: Event) => { ev.stopPropagation(); this.selected = entry(); this.onContextAction.fire({ action: name, entry: entry() }); };
+    return h('div', {
+      class: `tree-row ${kind}${active ? ' active' : ''}${selected ? ' selected' : ''}`,
+      role: 'treeitem', 'data-path': path, title: visibleText(e.truncated ? (e.children?.length ? `${path}: not all of its content is listed (past the listing's 50,000 entries)` : `${path}: its content is not listed (deeper than 64 folders, or past 50,000 entries)`) : path), style: `padding-left:${8 + depth * 14}px`, tabindex: -1,
+      'aria-level': depth + 1, 'aria-selected': active ? 'true' : 'false', 'aria-expanded': isDir ? String(open) : undefined,
+      onclick: () => this.click(entry()),
+    },
+      h('span', { class: 'twisty', 'aria-hidden': 'true' }, icon), h('span', { class: `file-glyph ${kind}`, 'aria-hidden': 'true' }, glyph), h('span', { class: 'tree-name' }, visibleText(e.name)),
+      h('span', { class: 'row-actions', 'aria-hidden': 'true' },
+        isDir ? h('span', { class: 'row-action', title: 'New file here', 'data-action': 'new-file', onclick: action('new-file') }, '+') : null,
+        h('span', { class: 'row-action', title: 'Rename', 'data-action': 'rename', onclick: action('rename') }, '✎'),
+        h('span', { class: 'row-action', title: 'Delete', 'data-action': 'delete', onclick: action('delete') }, '✕')));
   }
 }

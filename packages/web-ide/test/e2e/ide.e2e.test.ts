@@ -1004,6 +1004,21 @@ describe('IDE in headless Chromium', () => {
     }
   }, 120_000);
 
+  // a refresh redrew every row: a click pressed before it and released after it fell on a new
+  // element and was lost (the e2e clicks retried "element was detached" for seconds after a rename)
+  it('the explorer keeps its rows across a refresh that changes nothing: a click pressed before it and released after it opens the file', async () => {
+    const { page } = s;
+    const row = page.locator('.tree-row[data-path="sched.contract"]');
+    const box = (await row.boundingBox())!;
+    await page.evaluate(() => ((window as unknown as { __row: Element }).__row = document.querySelector('.tree-row[data-path="sched.contract"]')!));
+    await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+    await page.mouse.down();
+    await page.evaluate(() => window.__ide.workspace.refreshTree());
+    expect(await page.evaluate(() => (window as unknown as { __row: Element }).__row === document.querySelector('.tree-row[data-path="sched.contract"]'))).toBe(true);
+    await page.mouse.up();
+    await expect.poll(() => activeTab(page), { timeout: 5000 }).toBe('sched.contract');
+  });
+
   it('creates, renames and deletes files and folders from the explorer', async () => {
     const { page } = s;
     await page.locator('#btn-new-folder').click();
