@@ -1,4 +1,5 @@
 import { chromium, type Browser, type Page } from 'playwright-core';
+import { beforeAll, afterAll } from 'vitest';
 import { cpSync, mkdtempSync, rmSync, mkdirSync, realpathSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { basename, join } from 'node:path';
@@ -31,16 +32,18 @@ export interface Session {
  * `viewport` and `deviceScaleFactor` make a real screen: a 1366x768 laptop at 150 % is a viewport of
  * 911x512 CSS pixels at a scale of 1.5; `reducedMotion: 'reduce'` is the system's "reduce motion".
  */
-export async function startSession(opts: {
+export interface SessionOptions {
   buildService?: boolean; empty?: boolean; example?: string; limits?: Record<string, number>; port?: number;
   viewport?: { width: number; height: number }; deviceScaleFactor?: number; reducedMotion?: 'reduce' | 'no-preference';
-} = {}): Promise<Session> {
+}
+
+export async function startSession(opts: SessionOptions = {}): Promise<Session> {
   const base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-e2e-')));
   // named after its example, as `contract serve examples/mobile-robot` names it (the top bar shows it)
   const workspace = join(base, opts.empty ? 'workspace' : basename(opts.example ?? TUTORIAL));
   if (opts.empty) mkdirSync(workspace);
   else cpSync(opts.example ?? TUTORIAL, workspace, { recursive: true, filter: (src) => !/[\/]logs$/.test(src) });
-  const server = await startIdeServer({ workspace, port: opts.port ?? 0, buildService: opts.buildService ?? true, ...(opts.limits ? { limits: opts.limits } : {}) });
+  const server = await startIdeServer({ workspace, port: opts.port ?? Number(process.env.E2E_PORT ?? 0), buildService: opts.buildService ?? true, ...(opts.limits ? { limits: opts.limits } : {}) });
   const userDataDir = join(base, 'chromium-profile');
   mkdirSync(userDataDir);
   mkdirSync(SHOTS, { recursive: true });
@@ -52,6 +55,7 @@ export async function startSession(opts: {
   const browser = context.browser() as Browser;
   const page = context.pages()[0] ?? (await context.newPage());
   page.on('pageerror', (e) => console.error('[page error]', e.message));
+  if (process.env.E2E_CPU_THROTTLE) await (await context.newCDPSession(page)).send('Emulation.setCPUThrottlingRate', { rate: Number(process.env.E2E_CPU_THROTTLE) });
   const session: Session = {
     workspace, server, browser, page, userDataDir,
     async close() {
@@ -61,6 +65,41 @@ export async function startSession(opts: {
     },
   };
   return session;
+}
+
+/**
+ * The session of the tests of a file (called at its top level) or of a describe block (called in
+ * it): started in a beforeAll (startSession, then `beforeOpen` — files written in the workspace,
+ * page listeners —, openIde, then `afterOpen`), closed in an afterAll. The object returned is the
+ * session once started (a test or hook reads it as a Session; `s.server = …` replaces its server);
+ * read before, it throws. `timeout`: the beforeAll's bound, 60 s unless given.
+ */
+export function ideSession(opts: SessionOptions & { timeout?: number } = {}, hooks: {
+  beforeOpen?(s: Session): unknown; afterOpen?(s: Session): unknown;
+} = {}): Session {
+  let current: Session | undefined;
+  const { timeout = 60_000, ...options } = opts;
+  beforeAll(async () => {
+    current = await startSession(options);
+    await hooks.beforeOpen?.(current);
+    await openIde(current);
+    await hooks.afterOpen?.(current);
+  }, timeout);
+  afterAll(async () => {
+    await current?.close();
+  });
+  const started = (): Session => {
+    if (!current) throw new Error('the IDE session is not started: read it in a test or hook of the block that made it');
+    return current;
+  };
+  return new Proxy({} as Session, {
+    get: (_, key) => {
+      const s = started();
+      const value: unknown = Reflect.get(s, key, s);
+      return typeof value === 'function' ? (value as (...a: unknown[]) => unknown).bind(s) : value;
+    },
+    set: (_, key, value) => Reflect.set(started(), key, value),
+  });
 }
 
 export async function openIde(s: Session): Promise<number> {
@@ -167,6 +206,17 @@ export async function clickOrExplain(page: Page, selector: string): Promise<void
     (e as Error).message = `[harness] ${selector}: ${frame}; ready=${ready}\n${(e as Error).message}`;
     throw e;
   }
+}
+
+/**
+ * A notice with `text` shown from now on: the wait starts at once, to be awaited later. A notice
+ * stays 5 s on the page: waited for only after the checks of the files a step wrote (10 s and more
+ * on a loaded machine), it had come and gone (a rename's toast, seen under load).
+ */
+export function toastAfter(page: Page, text: string, timeout = 30_000): Promise<void> {
+  const shown = page.locator('.toast', { hasText: text }).first().waitFor({ timeout });
+  shown.catch(() => undefined); // awaited by the caller: its failure is theirs, not an unhandled rejection
+  return shown;
 }
 
 /** Waits until every file is saved (status bar). */
