@@ -3,8 +3,8 @@
  * schema at the cursor, keeps its labels readable at the docked size, zooms at the pointer, pans,
  * fits, and a click on a module, port or flow goes to its definition.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { startSession, openIde, shot, placeCursor, activeTab, openFile, cursorLine, type Session } from './harness.js';
+import { describe, it, expect } from 'vitest';
+import { ideSession, shot, placeCursor, activeTab, openFile, cursorLine, type Session } from './harness.js';
 import { axeScan, seriousOf } from './axe.js';
 import { writeChainSchema } from './chain-schema.js';
 import type {} from '../../src/app/ide-hook.js';
@@ -19,13 +19,7 @@ const viewOf = (page: Session['page']) => page.locator(`${pane} .arch-scene`).ev
 });
 
 describe('architecture diagram docked', () => {
-  beforeAll(async () => {
-    s = await startSession({ buildService: false });
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  s = ideSession({ buildService: false });
 
   it('docked beside the editor, it shows the schema at the cursor with readable labels', async () => {
     const { page } = s;

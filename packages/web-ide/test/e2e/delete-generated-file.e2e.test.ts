@@ -6,10 +6,10 @@
  * brings the code back (GET /api/user-code: nothing for another file, a path leaving the workspace
  * refused). The confirmation said only "The file will be deleted from disk." before.
  */
-import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { describe, expect, it } from 'vitest';
 import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { openIde, shot, startSession, type Session } from './harness.js';
+import { ideSession, shot, type Session } from './harness.js';
 
 const canGenerate = await import('@contract-studio/codegen').then((m) => typeof (m as Record<string, unknown>).generateArchitecture === 'function').catch(() => false);
 const MAA = 'src-gen/generated/architecture/modules/MAA_mod/module.c';
@@ -18,13 +18,7 @@ const LAB = '/* lab code written after the last generation */';
 let s: Session;
 
 describe.skipIf(!canGenerate)('the explorer\'s delete of a generated file holding code', () => {
-  beforeAll(async () => {
-    s = await startSession({ buildService: false });
-    await openIde(s);
-  }, 90_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  s = ideSession({ buildService: false, timeout: 90_000 });
 
   it('says which regions hold code and that the next generation restores them; keyboard only; Generate All brings the code back', async () => {
     const { page } = s;

@@ -7,9 +7,9 @@
  * a generated C file; the selection stays told apart from the editor; axe-core scans the generated
  * file's read-only view, its notice that the skeleton is read-only shown.
  */
-import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { describe, expect, it } from 'vitest';
 import type { Page } from 'playwright-core';
-import { openFile, openIde, placeCursor, shot, startSession, type Session } from './harness.js';
+import { ideSession, openFile, placeCursor, shot } from './harness.js';
 import { axeScan, seriousOf } from './axe.js';
 import type {} from '../../src/app/ide-hook.js';
 
@@ -67,14 +67,7 @@ async function selectAllAndMeasure(page: Page, anchor: string): Promise<Selectio
 }
 
 describe('the editor\'s colours in the dark theme', () => {
-  let s: Session;
-  beforeAll(async () => {
-    s = await startSession({ buildService: false, port: PORT, viewport: { width: 1366, height: 768 } });
-    await openIde(s);
-  }, 90_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  const s = ideSession({ buildService: false, port: PORT, viewport: { width: 1366, height: 768 }, timeout: 90_000 });
 
   it('selected text keeps 4.5:1 (WCAG AA) in a Cactal file and in a generated C file, and the selection stays visible', async () => {
     const { page } = s;

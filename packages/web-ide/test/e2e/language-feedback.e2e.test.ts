@@ -4,20 +4,14 @@
  * none inside a comment), and
  * Format on a file with a syntax error says why it did nothing (docs/ide.md, "Using it").
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { startSession, openIde, placeCursor, activeValue, openFile, waitSaved, shot, type Session } from './harness.js';
+import { describe, it, expect } from 'vitest';
+import { ideSession, placeCursor, activeValue, openFile, waitSaved, shot, type Session } from './harness.js';
 import type {} from '../../src/app/ide-hook.js';
 
 let s: Session;
 
 describe('language server feedback in the IDE', () => {
-  beforeAll(async () => {
-    s = await startSession({ buildService: false });
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  s = ideSession({ buildService: false });
 
   it('hover on PERIOD= shows µs, utilisation and critical path', async () => {
     const { page } = s;

@@ -4,8 +4,8 @@
  * open views — and a stored layout that is corrupt or names a deleted file does no harm
  * (docs/ide.md, "Reload keeps the workspace"). Real server, real Chromium.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { startSession, openIde, shot, placeCursor, openFile, type Session } from './harness.js';
+import { describe, it, expect } from 'vitest';
+import { ideSession, shot, placeCursor, openFile, type Session } from './harness.js';
 import type {} from '../../src/app/ide-hook.js';
 
 let s: Session;
@@ -54,13 +54,7 @@ async function drag(selector: string, dx: number, dy: number): Promise<void> {
 }
 
 describe('reload keeps the workspace', () => {
-  beforeAll(async () => {
-    s = await startSession({ buildService: false });
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  s = ideSession({ buildService: false });
 
   it('tabs, active tab, cursors, scroll, panel sizes, the bottom panel and the architecture view come back', async () => {
     const { page } = s;

@@ -8,12 +8,12 @@
  * there, and marks it on the strip; the job's CSV logs replayed say the same. Before, the Monitor
  * showed nothing of it. Real IDE server and build service, headless Chromium.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { describe, it, expect } from 'vitest';
 import { spawnSync } from 'node:child_process';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { modulePid } from '@contract-studio/build-service/test-support/module-pid';
-import { startSession, openIde, openFile, shot, type Session } from './harness.js';
+import { ideSession, openFile, shot } from './harness.js';
 
 const canBuild = spawnSync('bwrap', ['--version']).status === 0;
 /** One of the ports this test may use (E2E_LATE_RELEASE_PORT to choose another). */
@@ -22,14 +22,7 @@ const SCHEMA = 'schemaCommande1';
 const LATE = /^late release: schemaCommande1 cycle (\d+) released (\d+) us after its tick, past CRITICAL_DELAY 200000 us \(ORD late, no ORD:0\)$/;
 
 describe.skipIf(!canBuild)("ORD's late release in a real run", () => {
-  let s: Session;
-  beforeAll(async () => {
-    s = await startSession({ port: PORT });
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  const s = ideSession({ port: PORT });
 
   it('is counted, listed as a chip that seeks, and marked, live and in the replay', async () => {
     const { page } = s;

@@ -6,10 +6,10 @@
  * said nothing of it until the job ended. Then the job's CSV logs replayed: MAB gone there too, at
  * the line's time on the run's time line. Real IDE server and build service, headless Chromium.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { describe, it, expect } from 'vitest';
 import { spawnSync } from 'node:child_process';
 import { modulePid } from '@contract-studio/build-service/test-support/module-pid';
-import { startSession, openIde, openFile, shot, type Session } from './harness.js';
+import { ideSession, openFile, shot } from './harness.js';
 import type {} from '../../src/app/ide-hook.js';
 
 const canBuild = spawnSync('bwrap', ['--version']).status === 0;
@@ -18,14 +18,7 @@ const PORT = Number(process.env.E2E_LAUNCHER_GONE_PORT ?? 7812);
 const MODULE = 'MAB';
 
 describe.skipIf(!canBuild)('a module SIGKILLed mid-run, followed live', () => {
-  let s: Session;
-  beforeAll(async () => {
-    s = await startSession({ port: PORT });
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  const s = ideSession({ port: PORT });
 
   it("is shown gone from the launcher's line before the job ends: alert, strip mark, Running now", async () => {
     const { page } = s;

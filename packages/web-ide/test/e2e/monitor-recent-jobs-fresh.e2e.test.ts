@@ -9,10 +9,10 @@
  * the list was read only when the Monitor was shown again or a job of B's own ended: A's job never
  * appeared in it.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { describe, it, expect } from 'vitest';
 import { spawnSync } from 'node:child_process';
 import type { Page } from 'playwright-core';
-import { startSession, openIde, shot, type Session } from './harness.js';
+import { ideSession, shot } from './harness.js';
 
 const canBuild = spawnSync('bwrap', ['--version']).status === 0;
 /** One of the ports this test may use (E2E_RECENT_FRESH_PORT to choose another). */
@@ -21,14 +21,7 @@ const PORT = Number(process.env.E2E_RECENT_FRESH_PORT ?? 8111);
 const records = (page: Page) => page.evaluate(() => ((window as any).__ide.monitor.current?.recordCount as number | undefined) ?? 0);
 
 describe.skipIf(!canBuild)("Monitor: another tab's running job in an open run list", () => {
-  let s: Session;
-  beforeAll(async () => {
-    s = await startSession({ port: PORT });
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  const s = ideSession({ port: PORT });
 
   it("appears while the list is open, still running, and is followed live once picked", async () => {
     const a = s.page;

@@ -6,10 +6,10 @@
  * IDE server's jobs), labelled with its start time and how it ended, and picking it replays the
  * job's CSV logs as tab A replayed them: the same records.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { describe, it, expect } from 'vitest';
 import { spawnSync } from 'node:child_process';
 import type { Page } from 'playwright-core';
-import { startSession, openIde, shot, type Session } from './harness.js';
+import { ideSession, shot, type Session } from './harness.js';
 import type {} from '../../src/app/ide-hook.js';
 
 const canBuild =
@@ -24,13 +24,7 @@ const shownRecords = (page: Page) => page.evaluate(() => window.__ide.monitor.cu
 const label = (page: Page) => page.locator('.monitor-source').textContent();
 
 describe.skipIf(!canBuild)("Monitor: a Build & Run job of a closed tab, from another tab's run list", () => {
-  beforeAll(async () => {
-    s = await startSession({ port: IDE_PORT });
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  s = ideSession({ port: IDE_PORT });
 
   it('tab A runs the tutorial and is closed; tab B opens the Monitor and replays that job from its run list', async () => {
     const a = s.page;

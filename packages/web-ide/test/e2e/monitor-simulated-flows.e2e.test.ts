@@ -5,25 +5,18 @@
  * code that never ran (`MSC never read its input :0`, `MAA posted none on its output :0`). Real IDE
  * server, headless Chromium.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { describe, it, expect } from 'vitest';
 import { copyFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { startSession, openIde, shot, type Session } from './harness.js';
+import { ideSession, shot } from './harness.js';
 
 /** One of the ports this test may use (E2E_SIMULATED_FLOWS_PORT to choose another). */
 const PORT = Number(process.env.E2E_SIMULATED_FLOWS_PORT ?? 8211);
 const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/simulated-flows/flows.jsonl', import.meta.url));
 
 describe("a simulation's trace file, replayed", () => {
-  let s: Session;
-  beforeAll(async () => {
-    s = await startSession({ port: PORT, buildService: false });
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  const s = ideSession({ port: PORT, buildService: false });
 
   it('shows no ⚠ row of a silent flow, one row saying a simulation runs no module code', async () => {
     const { page } = s;

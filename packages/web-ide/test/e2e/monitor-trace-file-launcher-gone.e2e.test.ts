@@ -6,10 +6,10 @@
  * Before, the trace file's replay read no launcher line: the module was never shown gone. Real IDE
  * server, headless Chromium.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { describe, it, expect } from 'vitest';
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { startSession, openIde, shot, type Session } from './harness.js';
+import { ideSession, shot } from './harness.js';
 import type {} from '../../src/app/ide-hook.js';
 
 /** One of the ports this test may use (E2E_TRACE_FILE_GONE_PORT to choose another). */
@@ -18,14 +18,7 @@ const W = '2026-12-07T12:00:00.000000Z';
 const rec = (mono: string, module: string, kind: string, detail: string) => ({ kind, monoNs: mono, wallTime: W, module, peer: '', port: null, size: 0, detail, ...(kind === 'user' ? { fields: { event: detail } } : {}) });
 
 describe('a trace file with the launcher\'s end lines, replayed', () => {
-  let s: Session;
-  beforeAll(async () => {
-    s = await startSession({ port: PORT, buildService: false });
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  const s = ideSession({ port: PORT, buildService: false });
 
   it('shows the module gone at the line\'s time; a line with another pid is not believed', async () => {
     const { page } = s;

@@ -4,19 +4,12 @@
  * source chips and the controls stay on screen. Before, "(Build & Run of another tab)" took the
  * row: no chip was left, and Clear was cut off at the right edge.
  */
-import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { openIde, shot, startSession, type Session } from './harness.js';
+import { describe, expect, it } from 'vitest';
+import { ideSession, shot } from './harness.js';
 import type {} from '../../src/app/ide-hook.js';
 
 describe('the Build & Run panel\'s toolbar, narrow', () => {
-  let s: Session;
-  beforeAll(async () => {
-    s = await startSession();
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  const s = ideSession();
 
   it('keeps the chips and the controls on screen; the origin is cut, whole in its tooltip', async () => {
     const { page } = s;

@@ -6,12 +6,12 @@
  * Now the tab left saves its own, then takes up the closed tab's copy, merges it with the disk and
  * says so. Real server stopped and started again on its port (the same session), real Chromium.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { describe, it, expect } from 'vitest';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import type { Page } from 'playwright-core';
 import { startIdeServer } from '../../server/ide-server.js';
-import { startSession, openIde, openAnotherTab, openFile, placeCursor, waitSaved, activeValue, shot, type Session } from './harness.js';
+import { ideSession, openAnotherTab, openFile, placeCursor, waitSaved, activeValue, shot, type Session } from './harness.js';
 
 const SCHED = 'sched.contract';
 let s: Session;
@@ -38,13 +38,7 @@ const copies = (page: Page) => page.evaluate((p) => {
 const noticesOf = (page: Page) => page.evaluate(() => [...document.querySelectorAll('.toast')].map((t) => t.textContent ?? ''));
 
 describe('two tabs of one browser edit a file while the server is down', () => {
-  beforeAll(async () => {
-    s = await startSession({ buildService: false });
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  s = ideSession({ buildService: false });
 
   it("one tab's edit never replaces the other's in the browser; the first tab closed before the server is back, both edits reach the disk, said", async () => {
     const a = s.page;

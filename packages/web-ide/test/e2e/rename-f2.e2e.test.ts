@@ -13,10 +13,10 @@
  * user typed while the refusal was on its way is kept and saved; a server that does not answer
  * (the connection refused, page.route) gets the rename taken back too.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { describe, it, expect } from 'vitest';
 import { existsSync, mkdirSync, readFileSync, readdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { startSession, openIde, renameWithF2, activeValue, waitSaved, shot, MOBILE_ROBOT, type Session } from './harness.js';
+import { ideSession, renameWithF2, activeValue, waitSaved, shot, MOBILE_ROBOT, type Session } from './harness.js';
 import type {} from '../../src/app/ide-hook.js';
 
 const canGenerate = await import('@contract-studio/codegen').then((m) => typeof (m as Record<string, unknown>).generateArchitecture === 'function').catch(() => false);
@@ -28,13 +28,7 @@ const COMMON = 'src-gen/generated/architecture/common';
 const MODULES = 'src-gen/generated/architecture/modules';
 
 describe('F2 renames in the IDE', () => {
-  beforeAll(async () => {
-    s = await startSession({ example: MOBILE_ROBOT, buildService: false });
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  s = ideSession({ example: MOBILE_ROBOT, buildService: false });
 
   it('a rename the rules refuse (a supervisor named abc) says why in a toast, and changes nothing', async () => {
     const { page } = s;

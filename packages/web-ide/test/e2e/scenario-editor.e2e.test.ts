@@ -6,8 +6,8 @@
  * a row in the problems panel; completion after `expect rule SUP.action.` offers the rules; hover
  * on a port shows its type.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { startSession, openIde, openFile, placeCursor, shot, type Session } from './harness.js';
+import { describe, it, expect } from 'vitest';
+import { ideSession, openFile, placeCursor, shot, type Session } from './harness.js';
 import type {} from '../../src/app/ide-hook.js';
 
 let s: Session;
@@ -33,13 +33,7 @@ const setText = (page: Session['page'], text: string) => page.evaluate((t) => {
 }, text);
 
 describe('.scenario files in the IDE (headless Chromium)', () => {
-  beforeAll(async () => {
-    s = await startSession({ buildService: false });
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  s = ideSession({ buildService: false });
 
   it('opens a scenario with its language; the example has no marker', async () => {
     const { page } = s;

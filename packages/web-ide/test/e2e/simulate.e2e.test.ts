@@ -7,21 +7,14 @@
  * shown, in the panel and in the Monitor), a wrong step refused with its diagnostic, then Save as
  * scenario and `contract simulate` of the saved file passes; a reload grows the session again.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { describe, it, expect } from 'vitest';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { spawnSync } from 'node:child_process';
-import { startSession, openIde, shot, PKG, type Session } from './harness.js';
+import { ideSession, shot, PKG, type Session } from './harness.js';
 import type {} from '../../src/app/ide-hook.js';
 
-let s: Session;
-beforeAll(async () => {
-  s = await startSession({ buildService: false });
-  await openIde(s);
-}, 120_000);
-afterAll(async () => {
-  await s?.close();
-});
+const s = ideSession({ buildService: false, timeout: 120_000 });
 
 type Page = Session['page'];
 const simRule = (page: Page, id: string) => page.locator(`.sim-rule[data-rule="${id}"]`);

@@ -13,7 +13,7 @@ import { cpSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import type { Page } from 'playwright-core';
-import { openFile, openIde, placeCursor, shot, startSession, waitSaved, type Session } from './harness.js';
+import { ideSession, openFile, openIde, placeCursor, shot, startSession, waitSaved, type Session } from './harness.js';
 import { axeScan, seriousOf } from './axe.js';
 import type {} from '../../src/app/ide-hook.js';
 
@@ -293,14 +293,7 @@ describe('a 1366x768 laptop at 150 % (911x512 at scale 1.5, reduce motion)', () 
 });
 
 describe('the Monitor\'s readout and slider (1366x768 at 100 %)', () => {
-  let s: Session;
-  beforeAll(async () => {
-    s = await startSession({ port: 7901, viewport: { width: 1366, height: 768 }, deviceScaleFactor: 1 });
-    await openIde(s);
-  }, 90_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  const s = ideSession({ port: 7901, viewport: { width: 1366, height: 768 }, deviceScaleFactor: 1, timeout: 90_000 });
 
   it('the editor with a file open, axe-core: no serious or critical violation', async () => {
     const { page } = s;
@@ -337,14 +330,7 @@ describe('the Monitor\'s readout and slider (1366x768 at 100 %)', () => {
 });
 
 describe('a 1366x768 laptop at 125 % (1093x614 at scale 1.25)', () => {
-  let s: Session;
-  beforeAll(async () => {
-    s = await startSession({ port: 7902, viewport: { width: 1093, height: 614 }, deviceScaleFactor: 1.25 });
-    await openIde(s);
-  }, 90_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  const s = ideSession({ port: 7902, viewport: { width: 1093, height: 614 }, deviceScaleFactor: 1.25, timeout: 90_000 });
 
   it('Run settings with stdin rows fits the window: Cancel and Save on screen, Tab scrolls each control into view', async () => {
     const { page } = s;

@@ -7,11 +7,11 @@
  * (src/views/fixtures/killed-trace-run). Before, the Timeline read no launcher line from either
  * source. Real IDE server, headless Chromium.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { describe, it, expect } from 'vitest';
 import { copyFileSync, mkdirSync, readdirSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { startSession, openIde, shot, type Session } from './harness.js';
+import { ideSession, shot } from './harness.js';
 
 /** One of the ports this test may use (E2E_TIMELINE_GONE_PORT to choose another). */
 const PORT = Number(process.env.E2E_TIMELINE_GONE_PORT ?? 8113);
@@ -19,14 +19,7 @@ const FIXTURE = join(dirname(fileURLToPath(import.meta.url)), '..', '..', 'src',
 const HEADER_GONE = /· gone: MAB at \d+\.\d{3} ms \(contract-launch: module MAB \(pid 65\) died by signal 9 \(Killed\)\) ·/;
 
 describe("the Timeline: a module killed, told by the launcher's line", () => {
-  let s: Session;
-  beforeAll(async () => {
-    s = await startSession({ port: PORT, buildService: false });
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  const s = ideSession({ port: PORT, buildService: false });
 
   it("marks it in its lane from the trace file's launcher_line, as from the folder's contract-launch.log", async () => {
     const { page } = s;
