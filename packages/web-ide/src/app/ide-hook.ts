@@ -3,7 +3,7 @@
  * (`document.body.dataset.ready`; absent before). The browser tests (test/e2e) reach the parts
  * through it in `page.evaluate`, typed by this one declaration: they import it as a type
  * (`import type {} from '../../src/app/ide-hook.js'`), so a misspelt part or method fails the type
- * check (`npm run typecheck`: tsconfig.e2e.json) rather than a browser test at run time.
+ * check (`npm run typecheck`: tsconfig.test.json) rather than a browser test at run time.
  */
 import type { monaco } from '../editor/monaco.js';
 import type { Workspace } from '../workspace/workspace.js';
