@@ -57,6 +57,12 @@ export interface LoadedManifest {
     userCode: Map<string, string[]>;
     /** Whether the manifest records userCode at all (false: of an older version, which cannot tell a file that held none). */
     recordsUserCode: boolean;
+    /**
+     * Whether the manifest has a skeletons field at all (false: of a version before that record, which
+     * holds of each file only its regions' default hashes, nothing of its text outside them; a
+     * malformed field is true: no older version wrote it).
+     */
+    recordsSkeletons: boolean;
     /** path -> the region IDs whose code a deletion lost (Manifest.lostUserCode), for the paths of `files` that have a well-formed list. */
     lostUserCode: Map<string, string[]>;
 }
@@ -213,7 +219,8 @@ export function loadManifest(tree: OutputTree): ManifestLoad {
     const userCode = regionLists(held, files);
     const lostUserCode = regionLists((data as { lostUserCode?: unknown }).lostUserCode, files);
     const recordsUserCode = typeof held === 'object' && held !== null && !Array.isArray(held);
-    return { manifest: { files, skeletons, skeletonLines: skeletonLineTable, userCode, recordsUserCode, lostUserCode }, problems };
+    const recordsSkeletons = recorded !== undefined;
+    return { manifest: { files, skeletons, skeletonLines: skeletonLineTable, userCode, recordsUserCode, recordsSkeletons, lostUserCode }, problems };
 }
 
 /** A manifest's path -> region IDs table (userCode, lostUserCode): only paths of `files` with a well-formed list; anything else is ignored. */

@@ -267,7 +267,15 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     };
     /** No manifest there at all (not an unreadable or older one): a tree of another version or tool, or one whose manifest was deleted. */
     const noManifestAtAll = !loaded.manifest && unreadable === undefined && !manifestRefused;
-    /** The copies in orphans/ of the files that, with no manifest at all, held lines this generator does not write: one warning for them all. */
+    /**
+     * A manifest of a version before skeleton records (it holds of each file only its regions'
+     * default hashes, `{}` for a file without regions: nothing of the text outside them).
+     */
+    const olderManifest = loaded.manifest !== undefined && !loaded.manifest.recordsSkeletons && unreadable === undefined;
+    /**
+     * The copies in orphans/ of the files that, with no manifest at all or one of an older version,
+     * held lines this generator does not write: one warning for them all.
+     */
     const copiedWithoutRecord: string[] = [];
     const sorted = [...files].sort((a, b) => (a.path < b.path ? -1 : a.path > b.path ? 1 : 0));
     const produced = new Set(sorted.map((f) => f.path));
@@ -491,8 +499,9 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                 const orphan = writeOrphan(tree, file.path, d.orphan());
                 if (orphan.written) report.filesWritten++;
                 report.orphaned.push(orphan.path);
-                // a tree with no manifest at all (another version's or tool's): said once, below
-                if (d.unrecorded && noManifestAtAll) copiedWithoutRecord.push(orphan.path);
+                // a tree with no manifest at all (another version's or tool's), or an older version's
+                // manifest that records no file's text: said once, below
+                if (d.unrecorded && (noManifestAtAll || olderManifest)) copiedWithoutRecord.push(orphan.path);
                 else report.warnings.push({ file: file.path, line: d.line, message: d.message(orphan.path) });
             }
             // a file with CRLF line endings (a Windows checkout) keeps them: the generator's lines are
@@ -573,7 +582,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         }
     }
 
-    if (copiedWithoutRecord.length > 0) report.warnings.unshift({ file: MANIFEST_NAME, message: unrecordedTreeSummary(copiedWithoutRecord) });
+    if (copiedWithoutRecord.length > 0) report.warnings.unshift({ file: MANIFEST_NAME, message: unrecordedTreeSummary(copiedWithoutRecord, olderManifest) });
     if (unreadableNote && refusedUnrecorded && !refuseDisplacing) {
         // written anew, it would hold no record of the refused files: once resolved, their code
         // outside the regions would pass for the generator's. Left as it is, the next generation
@@ -605,14 +614,18 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
 const NAMED_COPIES = 3;
 
 /**
- * The one warning for a tree with no manifest at all (docs/codegen.md, "Without a record"): its
- * files holding lines outside their regions that this generator does not write were copied to
- * `copies` (orphans/...) before they were regenerated.
+ * The one warning for a tree with no manifest at all, or with a manifest of an older version that
+ * records no file's text (`older`) (docs/codegen.md, "Without a record"): its files holding lines
+ * outside their regions that this generator does not write were copied to `copies` (orphans/...)
+ * before they were regenerated.
  */
-function unrecordedTreeSummary(copies: readonly string[]): string {
+function unrecordedTreeSummary(copies: readonly string[], older: boolean): string {
     const named = copies.slice(0, NAMED_COPIES).join(', ') + (copies.length > NAMED_COPIES ? ` and ${copies.length - NAMED_COPIES} more` : '');
     const files = copies.length === 1 ? '1 file holds' : `${copies.length} files hold`;
-    return `not there: this tree has no record of what was generated in it (a tree of another version of ContrACT Studio, or of another tool such as the ContrACT Eclipse tool?). ${files} lines outside the protected regions that this generator does not write, an older generator's lines or code of yours (it cannot tell which): each was regenerated, its regions' code kept, and copied first as it was to ${ORPHANS_DIR}/ under its own path (${named}). Move any code of yours found there into a protected region, then delete the copies; an older generator's lines need nothing. The manifest is written now: the next generation tells the generator's lines from yours`;
+    const why = older
+        ? 'written by an older version of ContrACT Studio, it records of each file only the defaults of its protected regions, nothing of its text outside them (a file without regions, a Makefile, not at all).'
+        : 'not there: this tree has no record of what was generated in it (a tree of another version of ContrACT Studio, or of another tool such as the ContrACT Eclipse tool?).';
+    return `${why} ${files} lines outside the protected regions that this generator does not write, an older generator's lines or code of yours (it cannot tell which): each was regenerated, its regions' code kept, and copied first as it was to ${ORPHANS_DIR}/ under its own path (${named}). Move any code of yours found there into a protected region, then delete the copies; an older generator's lines need nothing. The manifest is written now: the next generation tells the generator's lines from yours`;
 }
 
 /**
