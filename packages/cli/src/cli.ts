@@ -1,19 +1,11 @@
 /** The `contract` dispatcher: `contract <command> [args]`, `contract --help`, `contract --version`. */
-import { readFileSync } from 'node:fs';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from './command.js';
 import { COMMANDS } from './commands/index.js';
 import { makeProcessIO } from './process-io.js';
+import { versionText } from './build-version.js';
 import { safeName, terminalSafeIO } from './terminal-text.js';
 import { closestName } from '@contract-studio/language/near-names';
 
-function version(): string {
-    try {
-        const pkg = JSON.parse(readFileSync(new URL('../package.json', import.meta.url), 'utf8')) as { version?: string };
-        return pkg.version ?? 'unknown';
-    } catch {
-        return 'unknown';
-    }
-}
 
 export function helpText(commands: Command[] = COMMANDS): string {
     const width = Math.max(...commands.map((c) => c.name.length));
@@ -42,7 +34,7 @@ export async function runCli(argv: string[], rawIO: CliIO = processIO, commands:
         return name ? EXIT_OK : EXIT_USAGE;
     }
     if (name === '--version' || name === '-v') {
-        io.out(`contract ${version()}\n`);
+        io.out(`contract ${versionText()}\n`);
         return EXIT_OK;
     }
     const command = commands.find((c) => c.name === name);
