@@ -21,6 +21,7 @@ import { EventWaits } from './event-waits.js';
 import { EventHandling, type EventHandlingFigures } from './event-handling.js';
 import { LostEvents, lostFlowText } from './lost-events.js';
 import { UnmatchedEvents } from './unmatched-events.js';
+import { UnrecordedDeliveries } from './unrecorded-deliveries.js';
 import { ProducerChanges } from './producer-changes.js';
 import { EndedMidRun, RUN_STOPPING, type LauncherToldEnd } from './ended-mid-run.js';
 import type { LauncherFileLine } from './launcher-lines-file.js';
@@ -474,6 +475,8 @@ export class StoryTeller {
     private readonly lostEvents = new LostEvents();
     /** A supervisor's module events that changed no rule (unmatched-events.ts). */
     private readonly unmatched = new UnmatchedEvents();
+    /** Supervisors whose event deliveries the log does not record (an older version's: unrecorded-deliveries.ts). */
+    private readonly unrecordedDeliveries = new UnrecordedDeliveries();
     /** Changes of producer on input data ports: schema switches, interleaves (producer-changes.ts). */
     private readonly producerChanges = new ProducerChanges();
 
@@ -520,9 +523,13 @@ export class StoryTeller {
         if (r.kind === 'unknown') return undefined;
         const t0 = (this.t0 ??= BigInt((r as TraceRecordBase).monoNs));
         const at = (x: TraceRecordBase) => `${offset(BigInt(x.monoNs) - t0)} ${x.module.padEnd(4)}`;
-        if (isRule(r)) return `${at(r)} rule ${r.function}.${r.rule} ${r.active ? 'active  ' : 'inactive'} <- ${describeCause(r.causeEvent)}`;
+        if (isRule(r)) {
+            this.unrecordedDeliveries.seeRule(r);
+            return `${at(r)} rule ${r.function}.${r.rule} ${r.active ? 'active  ' : 'inactive'} <- ${describeCause(r.causeEvent)}`;
+        }
         const k = r as KnownRecord;
         const what = String(k.fields['what'] ?? '');
+        this.unrecordedDeliveries.seeRecord(k);
         if (k.kind === 'supervisor') this.followAction(k, what);
         if (k.kind === 'ack_sent' || k.kind === 'run_finished') this.followAck(k);
         this.moduleCpu.see(k);
@@ -968,6 +975,18 @@ export class StoryTeller {
     }
 
     /**
+     * `3 event deliveries`; when supervisors' rules changed on module events that their log does not
+     * record (logs of an older version: unrecorded-deliveries.ts), that the number is not known.
+     */
+    private eventDeliveries(recorded: number): string {
+        const unknown = this.unrecordedDeliveries.supervisors();
+        if (unknown.length === 0) return plural(recorded, 'event delivery', 'event deliveries');
+        const named = unknown.slice(0, 3).join(', ') + (unknown.length > 3 ? ` and ${unknown.length - 3} more` : '');
+        const why = `${named}'s log${unknown.length === 1 ? ' is' : 's are'} of an older version, which records no event a supervisor takes, though its rules changed on module events`;
+        return recorded === 0 ? `an unknown number of event deliveries (${why})` : `${plural(recorded, 'event delivery', 'event deliveries')} and an unknown number more (${why})`;
+    }
+
+    /**
      * The line of counts: the records (readable ones: an unreadable line is no record, as in the
      * IDE's Monitor), what they were, and the unreadable lines.
      */
@@ -976,7 +995,7 @@ export class StoryTeller {
         return `${plural(this.counted.records, 'record')}: ${plural(n('ord_release'), 'module release')}, ${plural(n('ord_complete'), 'completed cycle')}, ` +
             `${plural(n('ord_deadline_miss'), 'deadline miss', 'deadline misses')}, ${plural(n('scheduler:overrun'), 'overrun')}, ` +
             `${plural(n('scheduler:held'), 'held cycle')}, ${plural(n('sup_rule'), 'rule change')}, ` +
-            `${n('data_received')} data and ${plural(n('event_received'), 'event delivery', 'event deliveries')}, ` +
+            `${n('data_received')} data and ${this.eventDeliveries(n('event_received'))}, ` +
             `${n('data_dropped') ? `${plural(n('data_dropped'), 'data value')} dropped, ` : ''}` +
             `${this.flowCounts()}` +
             `${this.unheard ? `${plural(this.unheard, 'event')} with no subscriber, ` : ''}${plural(this.counted.unreadable, 'unreadable line')}`;
