@@ -11,7 +11,8 @@ import type { FinishedRename, GenerationProblem, GenerationReport } from '@contr
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { formatText, summarize } from '../diagnostic-format.js';
-import { ORPHANS_HOLD, SRC_GEN_DIR, unusedTreeWarning } from '@contract-studio/conventions';
+import { ORPHANS_HOLD, REGION_COPY_NAME, SRC_GEN_DIR, unusedTreeWarning } from '@contract-studio/conventions';
+import { gitignoreHint } from '../gitignore-hint.js';
 import { safeName } from '../terminal-text.js';
 import { MENTIONED_KINDS, printRegionMentions } from '../region-mentions-text.js';
 import { holdTreeLock } from '../tree-lock-hold.js';
@@ -118,10 +119,18 @@ async function generateHeld(
             io.err(`no .contract file in ${safeName(dirArg)}: nothing was generated (a project is the folder of its .contract files)\n`);
             return EXIT_FAILURE;
         }
+        // the last generation's copy of the regions' code: created by this generation in a project of
+        // an older `contract new` (no .gitignore), said once (gitignore-hint.ts)
+        const regionCopy = join(out, REGION_COPY_NAME);
+        const copyBefore = typeof outOption !== 'string' && (await stat(regionCopy).catch(() => undefined)) !== undefined;
         const report = generateArchitecture(workspace.documents, out);
         const outLabel = typeof outOption === 'string' ? outOption : join(dirArg, SRC_GEN_DIR);
         await printReport(io, report, outLabel, verbose);
         io.err(`generated ${safeName(outLabel)}: ${report.created.length} created, ${report.updated.length} updated, ${report.unchanged.length} kept, ${report.orphaned.length} orphaned, ${report.errors.length} error(s)\n`);
+        if (typeof outOption !== 'string' && !copyBefore && (await stat(regionCopy).catch(() => undefined)) !== undefined) {
+            const hint = await gitignoreHint(dir, safeName(dirArg), [`${SRC_GEN_DIR}/${REGION_COPY_NAME}`]);
+            if (hint) io.err(hint);
+        }
         return report.errors.length > 0 ? EXIT_FAILURE : EXIT_OK;
 }
 

@@ -8,6 +8,7 @@
  * (1) or when the run did not go as designed (4: a limit hit, a module stuck, hung at the stop or ended early, the start request refused, output or logs cut; docs/ci.md).
  */
 import { lstatSync } from 'node:fs';
+import { stat } from 'node:fs/promises';
 import { cpus as machineCpus } from 'node:os';
 import { isAbsolute, join, relative, resolve, sep } from 'node:path';
 import { parseArgs } from '../args.js';
@@ -19,7 +20,8 @@ import { traceNameProblem } from '../trace-files.js';
 import { CLI_BUILD_SECONDS, CLI_RUN_ROOM_SECONDS, COMMON_FLAGS, COMMON_REPEATABLE, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, LIMIT_USAGE, onTerminal, parseJobOptions, parseLimitOptions, reportBuild, runJob } from '../job-runner.js';
 import { MIN_READY_TIMEOUT_SECONDS, addStdinEntry, cpuMissingFrom, emptyStdinEntries, isCpuList } from '@contract-studio/conventions';
 import { safeName } from '../terminal-text.js';
-import { refusedDefaultLogs, refusedLogsOut, refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';
+import { PREVIOUS_DIR, refusedDefaultLogs, refusedLogsOut, refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';
+import { gitignoreHint } from '../gitignore-hint.js';
 import { failureText, moduleFailures, problemLines } from './run-problems.js';
 import { runFigures, runFiguresOf } from './run-schemas.js';
 import { loadRunModel, startProblem, stdinProblem } from './run-model-checks.js';
@@ -259,6 +261,9 @@ export const runCommand: Command = {
         }
         const artifacts = outcome.job.artifacts;
         let savedLogs: SavedLogs;
+        // what this run creates in the project that git should ignore: said once (gitignore-hint.ts)
+        const logsBefore = defaultLogs && (await stat(logsDir).catch(() => undefined)) !== undefined;
+        const previousBefore = defaultLogs && (await stat(join(logsDir, PREVIOUS_DIR)).catch(() => undefined)) !== undefined;
         try {
             savedLogs = await saveLogs(artifacts, logsDir, defaultLogs);
         } catch (e) {
@@ -320,6 +325,9 @@ export const runCommand: Command = {
             if (logs.length) io.err(`CSV logs: ${logs.length} file(s) in ${safeName(fromCwd(io.cwd, logsDir))}\n`);
             for (const r of savedLogs.refused) io.err(`contract run: log not written to ${safeName(logsDir)}: ${safeName(r)}\n`);
             if (trace) io.err(`trace: ${trace.records} record(s)${trace.unreadable ? `, ${trace.unreadable} unreadable line(s)` : ''} in ${safeName(trace.file)}\n`);
+            const created = !defaultLogs ? [] : !logsBefore && logs.length ? [`logs/${logs[0]}`] : !previousBefore && savedLogs.movedAside ? [relative(opts.dir, savedLogs.movedAside.folder).split(sep).join('/')] : [];
+            const hint = await gitignoreHint(opts.dir, safeName(fromCwd(io.cwd, opts.dir)), created);
+            if (hint) io.err(hint);
         }
         if (outcome.result.limitHit) return code;
         if (failures.length) return EXIT_FAILURE;
