@@ -9,7 +9,7 @@
  * module's own, as its `module_started` record on the live trace gives it; a line that comes before
  * that record (the trace is read every few ms) waits for it, a few at most.
  */
-import { endedOnItsOwn, launcherEndLine, parseRecordLine, type KnownRecord, type LauncherEnd, type TraceLine } from '@contract-studio/build-service/trace';
+import { endedOnItsOwn, launcherEndLine, parseStreamedLine, type KnownRecord, type LauncherEnd, type TraceLine } from '@contract-studio/build-service/trace';
 
 /** End lines kept while their module's start record has not come (a run has 256 modules at most). */
 const MAX_WAITING = 256;
@@ -26,7 +26,7 @@ export class LiveModuleEnds {
         const out: string[] = [];
         for (const l of lines) {
             if (!l.text.includes(',module_started,')) continue;
-            const r = parseRecordLine(l.file, l.line, l.text);
+            const r = parseStreamedLine(l.file, l.line, l.text);
             if (r.kind !== 'module_started') continue;
             const k = r as KnownRecord;
             const pid = /(?:^| )pid=(\d{1,10})(?: |$)/.exec(k.detail);

@@ -19,7 +19,7 @@ import { createHash, type Hash } from 'node:crypto';
 import { constants, promises as fsp } from 'node:fs';
 import { lstat, type FileHandle } from 'node:fs/promises';
 import type { JobEvent } from '@contract-studio/build-service';
-import { LauncherLinesQueue, LogClocks, countRecord, endedOnItsOwn, launcherEndLine, launcherLineJson, parseRecordLine, type RecordCounts, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
+import { LauncherLinesQueue, LogClocks, countRecord, endedOnItsOwn, launcherEndLine, launcherLineJson, parseStreamedLine, type RecordCounts, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
 import { readLauncherLines } from './launcher-lines.js';
 import { lockTraceFile, openTraceFile } from './trace-files.js';
 import { JsonLines } from './record-json.js';
@@ -90,7 +90,7 @@ export class LiveTrace {
             if (!end || !endedOnItsOwn(end.how)) return;
             this.lines.add(launcherLineJson({ monoNs: this.lastMonoNs, line: e.line }));
         } else if (e.type === 'trace') {
-            const records = e.records.map((l) => parseRecordLine(l.file, l.line, l.text, this.clocks.of(l.file)));
+            const records = e.records.map((l) => parseStreamedLine(l.file, l.line, l.text, this.clocks.of(l.file)));
             for (const r of records) countRecord(this.counts, r);
             for (const r of records) {
                 this.lines.add(r);

@@ -8,7 +8,8 @@
  * (monoKey: mono_ns is past 2^53, a double's exact integers, on a machine up for 105 days) in typed
  * arrays beside it, not as a bigint in an object of its own; the window is a ring of fixed size.
  */
-import { MAX_LINE_CHARS, recordOfLine, unendedLine, LogClock, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
+import { MAX_LINE_CHARS, isLogHeaderIn, notALogRecord, NOT_A_LOG_WHY, recordOfLine, unendedLine, LogClock, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
+import { safeName } from './terminal-text.js';
 import { boundedLines, MAX_SKIP_BYTES, type BoundedLine } from './bounded-lines.js';
 import type { OpenLog } from './trace-stream.js';
 
@@ -46,6 +47,8 @@ export class LogRecords {
     readonly chars: number[] = [];
     at = 0;
     private ended = false;
+    /** Its first line is not the runtime's header: no log, refused whole (trace/parse.ts NOT_A_LOG_WHY). */
+    private refused = false;
 
     constructor(private readonly log: OpenLog, chunkBytes: number) {
         // a line of MAX_LINE_CHARS and its `\r` is whole: recordOfLine reads it as parseTrace does
@@ -70,7 +73,8 @@ export class LogRecords {
     async readChunk(): Promise<void> {
         this.records.length = this.hi.length = this.lo.length = this.chars.length = 0;
         this.at = 0;
-        const batch = await this.lines.next();
+        // a refused file (no log) is read no further
+        const batch = this.refused ? { done: true as const } : await this.lines.next();
         if (batch.done) {
             this.ended = true;
             return;
@@ -88,6 +92,16 @@ export class LogRecords {
     }
 
     private line(raw: string, unended: boolean): void {
+        if (this.refused) return;
+        if (this.lineNo === 0 && !isLogHeaderIn(raw)) {
+            // no log (a module's code made the file): said once, as one unreadable line, and nothing of it read
+            this.refused = true;
+            this.lineNo++;
+            this.problems.push(`${safeName(this.log.name)}: ${NOT_A_LOG_WHY}`);
+            const record = notALogRecord(this.log.name, raw.slice(0, 200));
+            this.push(record, record.text.length + record.reason.length);
+            return;
+        }
         const read = recordOfLine(this.log.name, this.lineNo++, raw, this.clock);
         if (!read) return;
         const record = unended ? unendedLine(read) : read;
@@ -99,6 +113,10 @@ export class LogRecords {
             monoKey((record as TraceRecordBase).monoNs, this.last);
             chars = raw.length;
         }
+        this.push(record, chars);
+    }
+
+    private push(record: TraceRecord, chars: number): void {
         this.records.push(record);
         this.hi.push(this.last.hi);
         this.lo.push(this.last.lo);

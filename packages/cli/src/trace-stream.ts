@@ -11,7 +11,7 @@
  */
 import { constants, promises as fsp } from 'node:fs';
 import { join } from 'node:path';
-import { MinHeap, isLogFileName, countRecord, endedOnItsOwn, launcherLineJson, type LauncherLinesQueue, type RecordCounts, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
+import { CSV_HEADER, MinHeap, isLogFileName, isLogHeaderIn, countRecord, endedOnItsOwn, launcherLineJson, type LauncherLinesQueue, type RecordCounts, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
 import { CHUNK_BYTES } from './bounded-lines.js';
 import { LogRecords, LogWindow } from './log-window.js';
 import { JsonLines } from './record-json.js';
@@ -48,6 +48,18 @@ export interface OpenLog {
     handle: fsp.FileHandle;
     /** The size seen when opened: what is read (a log still growing cannot make the read endless). */
     size: number;
+    /** Its first line is not the runtime's header: no log, refused whole by its reader (log-window.ts), and no module's second log. */
+    notALog?: true;
+}
+
+/** Whether an open file's first line is something else than the runtime's header (an empty file is not refused: it holds nothing). */
+async function beginsOtherwise(handle: fsp.FileHandle, size: number): Promise<boolean> {
+    if (size === 0) return false;
+    const buf = Buffer.alloc(CSV_HEADER.length + 2);
+    const { bytesRead } = await handle.read(buf, 0, buf.length, 0).catch(() => ({ bytesRead: 0 }));
+    const head = buf.toString('latin1', 0, bytesRead);
+    const nl = head.indexOf('\n');
+    return !isLogHeaderIn(head, 0, nl < 0 ? head.length : nl) || (nl < 0 && bytesRead === buf.length);
 }
 
 /** What a file that is not a regular file is, for the warning that leaves it out. */
@@ -96,7 +108,7 @@ export async function openLogFolder(dir: string, only?: readonly string[], skipp
             skipped.push(`${name}: ${st ? kindOf(st) : 'cannot be read'}, not read`);
             continue;
         }
-        logs.push({ name, handle, size: st.size });
+        logs.push((await beginsOtherwise(handle, st.size)) ? { name, handle, size: st.size, notALog: true } : { name, handle, size: st.size });
     }
     if (logs.length === 0) return `no readable CSV log in ${safeName(dir)}`;
     return logs;

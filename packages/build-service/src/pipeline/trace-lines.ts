@@ -6,7 +6,9 @@
  * newline), and nothing here throws on them.
  *
  * The same lines as the trace reader's parseLogFile (trace/parse.ts) reads from the whole file:
- * the header (line 1) and empty lines are counted, not sent; a trailing `\r` is dropped.
+ * the header (line 1) and empty lines are counted, not sent; a trailing `\r` is dropped. A file
+ * whose line 1 is not the runtime's header is no log (a module's code made it): its line 1 is
+ * sent (the readers take a line 1 for that: trace/parse.ts notALogRecord) and none after it.
  */
 import { CSV_HEADER, MAX_LINE_CHARS } from '../trace/parse.js';
 import type { TraceLine } from './job-events.js';
@@ -21,6 +23,10 @@ export class TraceLineSplitter {
   private partialBytes = 0;
   /** The current line was already sent cut: its bytes are skipped up to its newline. */
   private skipping = false;
+  /** Its line 1 is not the runtime's header: no line after it is sent. */
+  private refused = false;
+  /** Line 1 of a refused file that count() consumed (nobody was receiving): sent by the next push(). */
+  private refusedLine: string | undefined;
 
   /**
    * @param file     the log's name, carried by every line
@@ -43,6 +49,10 @@ export class TraceLineSplitter {
   /** Feeds the next bytes of the file; returns the lines they complete (and a cut one, if any). */
   push(chunk: Buffer): TraceLine[] {
     const out: TraceLine[] = [];
+    if (this.refusedLine !== undefined) {
+      out.push({ file: this.file, line: 1, text: this.refusedLine });
+      this.refusedLine = undefined;
+    }
     let start = 0;
     while (start < chunk.length) {
       const nl = chunk.indexOf(10, start);
@@ -96,6 +106,7 @@ export class TraceLineSplitter {
     }
     let last = -1;
     let start = 0;
+    if (this.lineNo === 1 && this.offset === 0 && !this.refused) this.countFirstLine(chunk);
     for (;;) {
       const nl = chunk.indexOf(10, start);
       if (nl < 0) {
@@ -128,16 +139,40 @@ export class TraceLineSplitter {
     return out;
   }
 
+  /**
+   * count() reads the file's first bytes (nobody receiving): its line 1 is checked all the same,
+   * and a refused one kept (200 characters) for the next push(): a client attached later learns
+   * that the file is no log. A line 1 not whole in the chunk is refused when its bytes so far are
+   * not the beginning of the header.
+   */
+  private countFirstLine(chunk: Buffer): void {
+    const nl = chunk.indexOf(10);
+    let to = nl < 0 ? chunk.length : nl;
+    if (nl >= 0 && to > 0 && chunk[to - 1] === 13) to--;
+    const text = chunk.toString('utf8', 0, Math.min(to, MAX_LINE_CHARS));
+    if (nl >= 0 ? text === CSV_HEADER : CSV_HEADER.startsWith(text)) return;
+    this.refused = true;
+    if ((nl < 0 ? chunk.length : nl + 1) > this.quietUntil) this.refusedLine = text.slice(0, 200);
+  }
+
   /** The line in bytes [from, to) of `bytes` ends at this.offset: sent unless empty or the header (a trailing \r dropped). */
   private line(out: TraceLine[], bytes: Buffer, from = 0, to = bytes.length): void {
+    if (this.refused) return;
     if (to > from && bytes[to - 1] === 13) to--;
-    if (to === from || this.offset <= this.quietUntil) return;
-    const text = bytes.toString('utf8', from, to);
-    if (this.lineNo === 1 && text === CSV_HEADER) return;
-    out.push({ file: this.file, line: this.lineNo, text });
+    if (this.lineNo === 1) {
+      // a log begins with the runtime's header: anything else refuses the file (its line 1 is sent, no later one)
+      const header = to - from === CSV_HEADER.length && bytes.toString('latin1', from, to) === CSV_HEADER;
+      if (header) return;
+      this.refused = true;
+    }
+    // (an empty line 1 is sent too: the readers say the file is no log)
+    if ((to === from && this.lineNo !== 1) || this.offset <= this.quietUntil) return;
+    out.push({ file: this.file, line: this.lineNo, text: bytes.toString('utf8', from, to) });
   }
 
   private emit(out: TraceLine[], text: string, endOffset: number): void {
+    if (this.refused) return;
+    if (this.lineNo === 1) this.refused = true; // line 1 longer than any header: no log
     if (endOffset <= this.quietUntil) return;
     out.push({ file: this.file, line: this.lineNo, text });
   }

@@ -3,7 +3,7 @@ import { execFileSync } from 'node:child_process';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterEach, beforeEach, describe, expect, test } from 'vitest';
-import { CSV_HEADER, MAX_LINE_CHARS, parseLogFile, parseRecordLine } from '../trace/parse.js';
+import { CSV_HEADER, MAX_LINE_CHARS, NOT_A_LOG_WHY, parseLogFile, parseRecordLine, parseStreamedLine } from '../trace/parse.js';
 import type { TraceLine } from './job-events.js';
 import { CUT_MARK, TraceLineSplitter } from './trace-lines.js';
 import { monoOf, TraceOrder } from './trace-order.js';
@@ -47,6 +47,25 @@ describe('TraceLineSplitter', () => {
     const out = s.push(Buffer.from(`${old}${rec(2)}\n${rec(3)}`));
     expect(out).toEqual([{ file: 'M_1.csv', line: 3, text: rec(2) }]);
     expect(s.end()).toEqual([{ file: 'M_1.csv', line: 4, text: rec(3), cut: true }]);
+  });
+
+  test('a file whose line 1 is not the runtime\'s header (no log): its line 1 is sent, no later line; read whole, it is one unknown record', () => {
+    // a module's code made `ORD_<date>.csv` in logs/: ORD's deadline miss, its clock consistent
+    const miss = rec(5_000_000_000, 'ORD', 'ord_deadline_miss', 'schema=goTo cycle=3 tick_ns=4999000000');
+    const text = `${miss}\n${rec(5_000_000_100, 'ORD', 'ord_deadline_miss', 'schema=goTo cycle=4 tick_ns=4999000100')}\n`;
+    for (const step of [1, 7, text.length]) {
+      const s = new TraceLineSplitter('ORD_1.csv');
+      const out: TraceLine[] = [];
+      for (let i = 0; i < text.length; i += step) out.push(...s.push(Buffer.from(text.slice(i, i + step))));
+      out.push(...s.end());
+      expect(out).toEqual([{ file: 'ORD_1.csv', line: 1, text: miss }]);
+    }
+    expect(parseLogFile({ name: 'ORD_1.csv', text })).toEqual([{ kind: 'unknown', file: 'ORD_1.csv', line: 1, reason: NOT_A_LOG_WHY, text: miss }]);
+    expect(parseStreamedLine('ORD_1.csv', 1, miss)).toEqual(parseLogFile({ name: 'ORD_1.csv', text })[0]);
+    // counted while nobody received (past the kept bound): said by the next push all the same
+    const s = new TraceLineSplitter('ORD_1.csv');
+    s.count(Buffer.from(text));
+    expect(s.push(Buffer.from(`${rec(5_000_000_200, 'ORD', 'ord_deadline_miss', 'schema=goTo cycle=5 tick_ns=1')}\n`))).toEqual([{ file: 'ORD_1.csv', line: 1, text: miss }]);
   });
 });
 

@@ -4,7 +4,7 @@
  * (`contract trace`, `contract run --trace`) as `@contract-studio/build-service/trace`.
  */
 export { TRACE_KINDS, traceKind, isUserEventName, type TraceKind, type TraceArea } from './record-kinds.js';
-export { parseTrace, parseLogFile, parseRecordLine, recordOfLine, unendedLine, recordLineEnd, parseCause, ownString, moduleOfLog, moduleNamedByLog, isLogFileName, twinLogs, TWIN_LOGS_WHY, foreignRecordReason, CSV_HEADER, MAX_LINE_CHARS, type LogFile } from './parse.js';
+export { parseTrace, parseLogFile, parseRecordLine, parseStreamedLine, recordOfLine, unendedLine, recordLineEnd, parseCause, ownString, moduleOfLog, moduleNamedByLog, isLogFileName, twinLogs, TWIN_LOGS_WHY, foreignRecordReason, CSV_HEADER, NOT_A_LOG_WHY, isLogHeaderIn, notALogRecord, MAX_LINE_CHARS, type LogFile } from './parse.js';
 export { splitCsvLine, csvField } from './csv-line.js';
 export { traceFileToLogs, traceFileToLogsSteps, recordOfJsonLine, traceFileItemOfJsonLine, jsonLineToCsv, MAX_JSON_LINE_CHARS, MAX_TRACE_FILE_MODULES, type TraceFileLogs, type JsonLineRead } from './jsonl.js';
 export { isDigitsIn, isModuleNameIn, isPlainIntegerIn, spaceIn, wordValueIn, hasWordIn } from './field-checks.js';

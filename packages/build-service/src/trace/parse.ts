@@ -13,6 +13,39 @@ import type { KnownRecord, RuleCause, RuleRecord, TraceRecord, UnknownRecord } f
 import { LogClock, monoTextProblem, posingAs } from './log-clock.js';
 
 export const CSV_HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
+/**
+ * Why a file read as a log is refused whole: the runtime writes its header as a log's first line
+ * (csvlog.c), so a file whose first line is something else was not written by it (a module's code
+ * made it, in logs/ or elsewhere: `ORD_<date>.csv` of forged deadline misses). None of its lines
+ * is taken for a record: said once, as the Timeline says it (docs/runtime-api.md "Whose records,
+ * and their times").
+ */
+export const NOT_A_LOG_WHY = `not a ContrACT CSV log (it does not begin with the runtime's header \`${CSV_HEADER}\`): none of its lines is taken for a record`;
+
+/** Whether text[from, to) (a file's first line, its newline left out) is the runtime's header (a `\r` before the newline allowed). */
+export function isLogHeaderIn(text: string, from = 0, to = text.length): boolean {
+    const end = to > from && text.charCodeAt(to - 1) === 13 /* \r */ ? to - 1 : to;
+    return end - from === CSV_HEADER.length && text.startsWith(CSV_HEADER, from);
+}
+
+/**
+ * The one unknown record a refused file (NOT_A_LOG_WHY) is read as: its line 1, the reason. A
+ * streamed log's line 1 is such a line too (the build service never sends a log's header, and
+ * sends nothing more of a file whose first line is not it: pipeline/trace-lines.ts).
+ */
+export function notALogRecord(file: string, firstLine: string): UnknownRecord {
+    return unknown(file, 1, NOT_A_LOG_WHY, firstLine);
+}
+
+/**
+ * A line of a log as the build service's live trace sends it (pipeline/trace-lines.ts): its line 1
+ * is sent only when it is not the runtime's header (then nothing more of the file is), so a line 1
+ * is the one unknown record of a file that is no log; any other line is parseRecordLine's.
+ */
+export function parseStreamedLine(file: string, lineNo: number, line: string, clock?: LogClock): TraceRecord {
+    return lineNo === 1 ? notALogRecord(file, line) : parseRecordLine(file, lineNo, line, clock);
+}
+
 /** Longer lines are not records (csvlog.c writes at most about 1 KiB per record). */
 export const MAX_LINE_CHARS = 4096;
 
@@ -246,6 +279,11 @@ function* logFileRecords(file: LogFile): Generator<TraceRecord> {
         let nl = text.indexOf('\n', pos);
         const unended = nl < 0;
         if (nl < 0) nl = text.length;
+        if (i === 0 && !isLogHeaderIn(text, 0, nl)) {
+            // no log: refused whole, said once (NOT_A_LOG_WHY)
+            yield notALogRecord(file.name, text.slice(0, Math.min(nl, 200)));
+            return;
+        }
         const record = recordOfLine(file.name, i, text.slice(pos, nl), clock);
         pos = nl + 1;
         if (record) yield unended ? unendedLine(record) : record;

@@ -54,7 +54,8 @@ export const traceCommand: Command = {
         }
         // two logs of one module (two runs' logs together): said before anything else, in every
         // format, and the exit status 1 unless --merge-logs asked for it (the story's figures add both)
-        const twins = twinLogLines(logs);
+        // (a file that is no log, its first line not the runtime's header, is none of its module's logs: its reader refuses it)
+        const twins = twinLogLines(logs.filter((l) => !l.notALog));
         for (const t of twins) io.err(`contract trace: warning: ${t}\n`);
         try {
             // the launcher's own lines (its end line of a module killed from outside): told in the

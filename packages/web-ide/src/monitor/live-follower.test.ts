@@ -3,7 +3,7 @@ import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { WebSocketServer, WebSocket } from 'ws';
-import { encodeTraceRecords, type TraceLine } from '@contract-studio/build-service/trace';
+import { NOT_A_LOG_WHY, encodeTraceRecords, type TraceLine } from '@contract-studio/build-service/trace';
 import { LiveFollower, type SocketLike } from './live-follower.js';
 import { RemoteMonitorModel, type FollowerPort } from './remote-model.js';
 import { MonitorModel } from './monitor-model.js';
@@ -252,6 +252,27 @@ describe('a live run followed in a worker', () => {
     const { remote } = pair(url);
     await settled(remote);
     expect(remote.problems).toEqual([`ORD: a second log of it in the run's logs folder (ORD_6-Dec-2026-99h99m99s.csv, beside ${own.file}), read with the first: a run writes one log per module (a file named as its log that is not one)`]);
+  });
+
+  it('says a file whose line 1 is not the runtime\'s header (the service sends that line 1 alone) and folds none of it: no deadline miss of ORD, no second log', async () => {
+    const named = lines.map((l) => ({ ...l, file: `${l.file.slice(0, -4)}_4-Dec-2026-05h49m24s.csv` }));
+    const forged = 'ORD_4-Dec-2026-05h49m59s.csv';
+    const miss = '52092900000000,2026-12-04T05:49:27.253000Z,ORD,ord_deadline_miss,,,0,schema=schemaCommande1 cycle=3 tick_ns=52092787155629';
+    const half = named.findIndex((l) => Number(l.text.slice(0, l.text.indexOf(','))) > 52092900000000);
+    const sent: TraceLine[] = [...named.slice(0, half), { file: forged, line: 1, text: miss }, ...named.slice(half)];
+    const url = await listen((ws) => {
+      ws.send(JSON.stringify({ type: 'trace', seq: 1, t: Date.now(), ...encodeTraceRecords(sent) }));
+      ws.send(JSON.stringify({ type: 'end', seq: 2, t: Date.now(), result: { ok: true } }));
+    });
+    const { remote } = pair(url);
+    await settled(remote);
+    const clean = new MonitorModel();
+    for (const l of named) clean.pushLine(l.file, l.line, l.text);
+    expect(remote.problems).toEqual([`${forged}: ${NOT_A_LOG_WHY}`]);
+    expect(remote.live.periodic.get('schemaCommande1')!.deadlineMisses).toBe(clean.live.periodic.get('schemaCommande1')!.deadlineMisses);
+    expect(remote.marks.filter((m) => m.kind === 'miss')).toEqual(clean.marks.filter((m) => m.kind === 'miss'));
+    expect(remote.recordCount).toBe(named.length);
+    expect(remote.live.unknownLines).toBe(clean.live.unknownLines + 1);
   });
 
   it('sends the page at most one snapshot per snapshotMs, and the last one always', async () => {

@@ -11,7 +11,7 @@
  * does not decode is skipped and said (problems), lines and batches are bounded.
  * A broken stream is taken up again after the last event seen (job-stream.ts, as for the build panel).
  */
-import { forEachTraceLine, moduleOfLog } from '@contract-studio/build-service/trace';
+import { NOT_A_LOG_WHY, forEachTraceLine, moduleOfLog } from '@contract-studio/build-service/trace';
 import { JobStream, type SocketLike, type StreamEvent } from '../build/job-stream.js';
 import { MonitorModel } from './monitor-model.js';
 import { jobOutcome, CONNECTION_LOST, LOST_TRACE, type FromFollower, type Snapshot, type ToFollower } from './live-follow-protocol.js';
@@ -144,6 +144,13 @@ export class LiveFollower {
   /** The line text.slice(from, to) (read in place: the model keeps its range of the event's text, `textId`). */
   private pushLine(file: string, line: number, text: string, from: number, to: number, arrival: number, textId?: number, cut = false): void {
     const name = boundedName(file);
+    if (line === 1) {
+      // the service sends a log's line 1 only when it is not the runtime's header, and nothing of
+      // that file after it (build-service pipeline/trace-lines.ts): no log, said, none of it read
+      this.problem(`${name}: ${NOT_A_LOG_WHY}`);
+      this.model.countUnsent(1); // its one unreadable line, as a replay and `contract trace` count it
+      return;
+    }
     if (name !== this.gapFile) this.noteLogFile(name);
     this.followLines(name, line);
     this.model.pushLineIn(name, line, text, from, Math.min(to, from + MAX_LINE + 1), textId, cut);

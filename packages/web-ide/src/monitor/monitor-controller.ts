@@ -355,7 +355,8 @@ export class MonitorController {
     applyLauncherLines(model, logs.files, logs.launcherLines);
     // a log the service left out or capped, one that could not be downloaded, or the rest of one
     // that is not a trace is said: the replay lacks it
-    const problems = [...logs.problems, ...unread];
+    // what matters first (a file that is no log, two logs of one module: recorded-run.ts), then the files the service did not collect
+    const problems = [...unread, ...logs.problems];
     const project = this.runs.get(`live:${jobId}`)?.project ?? this.runs.get(`job:${jobId}`)?.project ?? recentProject ?? this.deps.project();
     const run: Run = { id: `job:${jobId}`, label: csvLogsRunLabel(jobId, problems, outcome, recordCounts(model), logs.crashSites), model, live: false, whole: true, outcome, project };
     this.keepRecorded(run);
@@ -482,8 +483,10 @@ export class MonitorController {
     const unread = [...partly, ...notRecords, ...('launcherLinesProblem' in listing && listing.launcherLinesProblem ? [listing.launcherLinesProblem] : [])];
     const counted = unreadableNote(recordCounts(model));
     const inFolder = paths.length + listing.more + listing.notReadCount;
-    const read = leftOut.length ? `${files.length} of ${inFolder} CSV logs in ${where}${counted} (left out: ${leftOut.join('; ')})${whole}` : `${files.length} CSV log(s) in ${where}${counted}`;
-    const told = unread.length ? `${read} (not whole: ${unread.join('; ')})` : read;
+    // what matters first: what was read of the logs (a file that is no log, two logs of one module:
+    // recorded-run.ts), then the entries not read (names a module's code may have made by the hundred)
+    const read = leftOut.length ? `${files.length} of ${inFolder} CSV logs in ${where}${counted}` : `${files.length} CSV log(s) in ${where}${counted}`;
+    const told = `${read}${unread.length ? ` (not whole: ${unread.join('; ')})` : ''}${leftOut.length ? ` (left out: ${leftOut.join('; ')})${whole}` : ''}`;
     // where its crashed modules crashed, from the folder's crash files (the server reads them: GET /api/log-folder)
     const crashSites = crashSitesNote('crashSites' in listing ? listing.crashSites ?? [] : [], "the logs' crash files");
     const label = `${told}${crashSites}`;

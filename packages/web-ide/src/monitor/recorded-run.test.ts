@@ -3,7 +3,7 @@ import fc from 'fast-check';
 import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { parseTrace, type LogFile } from '@contract-studio/build-service/trace';
+import { NOT_A_LOG_WHY, parseTrace, type LogFile } from '@contract-studio/build-service/trace';
 import { MonitorModel, type MonitorModelOptions } from './monitor-model.js';
 import { recordedRunSteps } from './recorded-run.js';
 import { piecedLog, type LogFile as PiecedLogFile } from '../views/run-logs.js';
@@ -40,7 +40,8 @@ function viaRanges(files: PiecedLogFile[], every = 7, opts = OPTS): { model: Mon
   let n = 0;
   let step = steps.next();
   for (; !step.done; step = steps.next()) n++;
-  expect(step.value.leftOut).toEqual([]);
+  // (a file that is no log, its first line not the runtime's header, is said: both readers refuse it whole)
+  expect(step.value.leftOut.filter((n) => !n.endsWith(NOT_A_LOG_WHY))).toEqual([]);
   return { model: step.value.model, steps: n };
 }
 
@@ -99,7 +100,7 @@ describe('a recorded run built from its logs read in place (recorded-run.ts)', (
       body.splice(1, 0, 'garbage', '', ' ', '"quoted,field",x', HEADER, `12a,${W},SUP,sup_rule,,,0,x`, rule('1', 'f', 'R', true).replace('f.R ', 'f R '));
       body.push(`${'9'.repeat(21)},${W},SUP,module_exit,,,0,status=0`, 'x'.repeat(5000));
       const text = [HEADER, ...body].join(k % 2 ? '\r\n' : '\n');
-      // some without their last newline, one with a blank line before its header (the header is then a line of garbage)
+      // some without their last newline, one with a blank line before its header (no log then: refused whole, by both readers)
       return { name: f.name, text: k === 0 ? `\n${text}` : k % 3 ? text : `${text}\n` };
     });
     const model = expectSame(hostile);
@@ -220,7 +221,7 @@ describe('a recorded run built from its logs read in place (recorded-run.ts)', (
   });
 
   it('builds nothing of logs with no record', () => {
-    const empty = [{ name: 'A.csv', text: '' }, { name: 'B.csv', text: `${HEADER}\n` }, { name: 'C.csv', text: '\n\n' }];
+    const empty = [{ name: 'A.csv', text: '' }, { name: 'B.csv', text: `${HEADER}\n` }, { name: 'C.csv', text: `${HEADER}\n\n\n` }];
     expect(viaRanges(empty).model.recordCount).toBe(0);
     expectSame(empty);
   });

@@ -14,7 +14,7 @@
  * Built in steps (a generator that yields every `every` lines) so that its caller can let the
  * page draw between slices.
  */
-import { LogClock, MinHeap, TRACE_KINDS, TWIN_LOGS_WHY, parseRecordLine, recordLineEnd, twinLogs, type KnownRecord, type UnknownRecord } from '@contract-studio/build-service/trace';
+import { LogClock, MinHeap, NOT_A_LOG_WHY, TRACE_KINDS, TWIN_LOGS_WHY, isLogHeaderIn, notALogRecord, parseRecordLine, recordLineEnd, twinLogs, type KnownRecord, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { piecesLength, type LogFile } from '../views/run-logs.js';
 import { MonitorModel, type MonitorModelOptions } from './monitor-model.js';
 import { digitsValue, scanLine, scanned } from './line-scan.js';
@@ -26,6 +26,8 @@ import { digitsValue, scanLine, scanned } from './line-scan.js';
  */
 interface LogLines {
   name: string;
+  /** Its first line is not the runtime's header: no log, none of its lines read (trace/parse.ts NOT_A_LOG_WHY). */
+  notALog?: true;
   /** Its text in pieces, each ending at a line end (the last one: where the file ends). */
   pieces: readonly string[];
   n: number;
@@ -143,6 +145,18 @@ function* logLines(file: LogFile, every: number, maxUnreadable: number, leftOut:
       let nl = text.indexOf('\n', pos);
       if (nl < 0) nl = text.length;
       const from = pos;
+      if (i === 0 && !isLogHeaderIn(text, from, nl)) {
+        // no log (a module's code made it): none of its lines is read, said first (recordedRunSteps);
+        // its line 1 is its one unreadable line, as the trace reader reads it (parse.ts notALogRecord)
+        l.notALog = true;
+        l.refused.set(0, notALogRecord(name, text.slice(from, Math.min(nl, from + 200))));
+        l.piece[0] = p;
+        l.from[0] = from;
+        l.to[0] = nl;
+        l.line[0] = 1;
+        l.n = 1;
+        break lines;
+      }
       const to = recordLineEnd(text, i, from, nl);
       pos = nl + 1;
       if (to < 0) continue;
@@ -208,8 +222,11 @@ export function* recordedRunSteps(files: readonly LogFile[], every = 2000, optio
   const byName = files.map((_, i) => i).sort((a, b) => (files[a]!.name < files[b]!.name ? -1 : files[a]!.name > files[b]!.name ? 1 : 0));
   const sorted = byName.map((i) => files[i]!);
   const logs: LogLines[] = [];
-  const leftOut: string[] = [...twinLogNotes(sorted.map((f) => f.name))];
-  for (const file of sorted) logs.push(yield* logLines(file, every, maxUnreadable, leftOut));
+  const notes: string[] = [];
+  for (const file of sorted) logs.push(yield* logLines(file, every, maxUnreadable, notes));
+  // what matters first: the files that are no log, and two logs of one module (the files that are logs)
+  const notLogs = logs.filter((l) => l.notALog).map((l) => `${l.name}: ${NOT_A_LOG_WHY}`);
+  const leftOut: string[] = [...notLogs, ...twinLogNotes(logs.filter((l) => !l.notALog).map((l) => l.name)), ...notes];
   // each piece of each log is a text of its own to the model (its textId)
   const firstTextId: number[] = [];
   logs.reduce((id, l, f) => ((firstTextId[f] = id), id + l.pieces.length), 0);
