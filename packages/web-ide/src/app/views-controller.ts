@@ -6,6 +6,9 @@ import type { ArchitectureView, CursorAt } from '../views/architecture-view.js';
 import type { ArchLocation } from '../lsp/architecture-model.js';
 import type { TimelineView } from '../views/timeline-view.js';
 import type { RunLogs } from '../views/run-logs.js';
+import type { ModelModules } from '../views/activation-log.js';
+import { readSupervisorSymbols } from '../monitor/supervisor-symbols.js';
+import { isContract } from '../workspace/file-kinds.js';
 import { debounce } from '../util/dom.js';
 
 /**
@@ -97,10 +100,25 @@ export class ViewsController {
     else this.d.editors.focusActive();
   }
 
+  /**
+   * The project's supervisors and other modules, from the language server's symbols (the Monitor's
+   * reading, supervisor-symbols.ts); undefined when it does not answer within 2 s or names none.
+   */
+  private async modelModules(): Promise<ModelModules | undefined> {
+    const project = this.d.project();
+    const files = this.d.workspace.allFiles().filter((p) => isContract(p) && (!project || p.startsWith(`${project}/`)));
+    let timer: ReturnType<typeof setTimeout> | undefined;
+    const late = new Promise<undefined>((r) => (timer = setTimeout(() => r(undefined), 2000)));
+    const symbols = await Promise.race([readSupervisorSymbols(files.map((p) => this.d.workspace.uriOf(p).toString()), (uri) => this.d.lsp.documentSymbols(uri)).catch(() => undefined), late]);
+    clearTimeout(timer);
+    if (!symbols || (!symbols.catalogue.size && !symbols.modules.size)) return undefined;
+    return { supervisors: new Set(symbols.catalogue.keys()), modules: new Set(symbols.modules.keys()) };
+  }
+
   async openTimeline(): Promise<void> {
     if (!this.timeline) {
       const { TimelineView } = await import('../views/timeline-view.js');
-      this.timeline = new TimelineView(() => this.d.project(), this.d.workspace);
+      this.timeline = new TimelineView(() => this.d.project(), this.d.workspace, () => this.modelModules());
       if (this.lastRunLogs) this.timeline.showRun(this.lastRunLogs);
     }
     const timeline = this.timeline;

@@ -278,6 +278,7 @@ export class MonitorController {
     this.panel = new MonitorPanel({
       schemas: () => this.projectSchemas(),
       supervisors: async () => (await this.readSymbols()).catalogue,
+      modelModules: async () => (await this.readSymbols()).modules,
       openRule: (sup, fn, rule) => void this.openRule(sup, fn, rule),
       createDiagram: async () => new (await import('../views/architecture-view.js')).ArchitectureView(() => lsp.architecture(), undefined, undefined, { inScrolledPanel: true }),
       onSource: (id) => {

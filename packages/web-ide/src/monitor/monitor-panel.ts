@@ -23,7 +23,7 @@ import { activeSchemas, lastActivated, type SchemaInfo } from './active-schemas.
 import { MarksStrip, markTooltip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { unheardEventText } from '@contract-studio/build-service/trace';
-import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
+import { notSupervisorText, notSupervisors, supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
 import { NOT_IN_MODEL, crashedModulesText, notReleasedText, schedulingText, flowDropText, flowValueText, flowWaitText, flowWaitTitle, fmtT, followButton, keptRequestsLine, moduleCpuText, namesPastBoundText, releaseLatenessText, lateReleasesText, ruleTexts, quietDataFlowRow, isSimulatedFlowsLine, noActiveSchemaText, timeReadout, unheardEventsRow } from './panel-text.js';
 import { visibleText } from '@contract-studio/conventions';
 import { shortAtWord } from '../util/short-text.js';
@@ -37,6 +37,8 @@ const RULE_NAME_MAX_CH = 28;
 export interface MonitorPanelDeps {
   schemas: () => Promise<ArchSchema[]>;
   supervisors: () => Promise<SupervisorCatalogue>;
+  /** The model's modules that are no supervisor, and what each is (supervisor-symbols.ts `modules`). */
+  modelModules?: () => Promise<ReadonlyMap<string, string>>;
   openRule: (supervisor: string, fn: string, rule: string) => void;
   /** Creates the (lazily loaded) diagram that the panel animates. */
   createDiagram: () => Promise<ArchitectureView>;
@@ -84,6 +86,7 @@ export class MonitorPanel {
   private schemas: ArchSchema[] = [];
   private catalogue: SchemaInfo[] = [];
   private sups: SupervisorCatalogue = new Map();
+  private modelModules: ReadonlyMap<string, string> = new Map();
   private diagram: ArchitectureView | undefined;
   private userChoseSchema = false;
   private redrawTimer: ReturnType<typeof setTimeout> | undefined;
@@ -242,10 +245,11 @@ export class MonitorPanel {
   /** Re-reads the schemas and supervisors of the workspace model (after an edit, or on open). */
   async refreshModel(): Promise<void> {
     try {
-      const [schemas, sups] = await Promise.all([this.deps.schemas(), this.deps.supervisors()]);
+      const [schemas, sups, modules] = await Promise.all([this.deps.schemas(), this.deps.supervisors(), this.deps.modelModules?.() ?? new Map<string, string>()]);
       this.schemas = schemas;
       this.catalogue = schemas.map((s) => ({ name: s.name, kind: s.kind, modules: s.modules.map((m) => m.name) }));
       this.sups = sups;
+      this.modelModules = modules;
     } catch {
       /* the model does not parse: keep the last one */
     }
@@ -428,7 +432,7 @@ export class MonitorPanel {
 
   private renderSupervisors(s: MonitorState): void {
     const blocks: HTMLElement[] = [];
-    for (const { name: sup, state: st, functions: fns, inModel, notInModel } of supervisorRows(this.sups, s)) {
+    for (const { name: sup, state: st, functions: fns, inModel, notInModel } of supervisorRows(this.sups, s, this.modelModules)) {
       const block = this.row(`sup:${sup}`, () => h('div', { class: 'monitor-sup', role: 'listitem', 'data-supervisor': sup }));
       const header = this.row(`suph:${sup}`, () => h('div', { class: 'monitor-sup-name' }));
       setText(header, `${sup}${inModel === false ? ` ${NOT_IN_MODEL}` : ''}${st ? ` · ${st.actionsDone} action(s) done, ${st.actionsUndone} undone` : ''}`);
@@ -482,6 +486,13 @@ export class MonitorPanel {
       blocks.push(block);
     }
     if (!blocks.length) blocks.push(this.row('sup:none', () => h('div', { class: 'muted' }, 'No supervisor in the trace yet')));
+    // a module the model says is no supervisor, whose log holds supervisor records: said once, not listed
+    for (const { name, is } of notSupervisors(this.sups, s, this.modelModules)) {
+      const el = this.row(`notsup:${name}`, () => h('div', { class: 'muted monitor-not-supervisor', 'data-module': name }));
+      setText(el, notSupervisorText(name, is));
+      setAttr(el, 'title', el.textContent ?? '');
+      blocks.push(el);
+    }
     replaceIfChanged(this.supEl, blocks);
   }
 

@@ -5,13 +5,14 @@ import { describe, expect, it } from 'vitest';
 import { NOT_A_LOG_WHY } from '@contract-studio/build-service/trace';
 import { recordedRunSteps } from './recorded-run.js';
 import type { MonitorModel } from './monitor-model.js';
+import { notSupervisorText, notSupervisors, supervisorRows } from './supervisor-rows.js';
 import { activationsFromLogs } from '../views/run-logs.js';
 
 /**
  * What a module's code may write to fool the readers of a run (docs/runtime-api.md "Whose
  * records, and their times"), on a real run's logs (the tutorial, fixtures/tutorial-run, under the
  * names the runtime gives them): a file of its own in the logs folder named as ORD's log, with no
- * header (the runtime begins every log with it).
+ * header (the runtime begins every log with it), and supervisor lines appended to its own log.
  */
 const dir = fileURLToPath(new URL('./fixtures/tutorial-run', import.meta.url));
 const DATE = '4-Dec-2026-05h49m24s';
@@ -55,5 +56,35 @@ describe('a file named as ORD\'s log that does not begin with the runtime\'s hea
   it('the Timeline: said as a file that is no log, none of its lines drawn', () => {
     const { errors } = activationsFromLogs([...real, { name: FORGED, text: `${MISS}\n` }]);
     expect(errors).toContain(`${FORGED}: not a ContrACT CSV log (missing mono_ns/module/event columns)`);
+  });
+});
+
+describe('supervisor lines a plain module appends to its own log', () => {
+  const lanes = (files: { name: string; text: string }[], model?: Parameters<typeof activationsFromLogs>[1]) => {
+    const { acts } = activationsFromLogs(files, model);
+    return [...new Set(acts.map((a) => a.module))].sort();
+  };
+
+  it('the Timeline keeps its lane and its bars: without a model (ORD ran it), and with the model (a synchronous module)', () => {
+    const clean = activationsFromLogs(real).acts.filter((a) => a.module === 'MSC');
+    expect(clean.length).toBeGreaterThan(0);
+    const forged = withLines(MSC, SUPERVISOR_LINES);
+    expect(lanes(forged)).toEqual(lanes(real));
+    expect(activationsFromLogs(forged).acts.filter((a) => a.module === 'MSC')).toEqual(clean);
+    const model = { supervisors: new Set(['SUP', 'GLB']), modules: new Set(['MSA', 'MSB', 'MSC', 'MSD', 'MAA', 'MAB']) };
+    expect(activationsFromLogs(forged, model).acts.filter((a) => a.module === 'MSC')).toEqual(clean);
+    // a real supervisor's function lines still make its bars
+    expect(activationsFromLogs(forged, model).acts.filter((a) => a.module === 'SUP')).toEqual(activationsFromLogs(real).acts.filter((a) => a.module === 'SUP'));
+  });
+
+  it('the Monitor does not list among the supervisors a module the model says is none; it says its records once', () => {
+    const { model } = replay(withLines(MSC, SUPERVISOR_LINES));
+    const s = model.live;
+    const catalogue = new Map([['SUP', new Map([['action', ['FIRST']]])]]);
+    const modules = new Map([['MSC', 'synchronous module'], ['MSA', 'synchronous module']]);
+    expect(supervisorRows(catalogue, s, modules).map((r) => r.name)).not.toContain('MSC');
+    expect(supervisorRows(catalogue, s, modules).map((r) => r.name)).toContain('SUP');
+    expect(notSupervisors(catalogue, s, modules)).toEqual([{ name: 'MSC', is: 'synchronous module' }]);
+    expect(notSupervisorText('MSC', 'synchronous module')).toBe('MSC: supervisor records in its log, not taken for a supervisor\'s: the model says MSC is a synchronous module (its code wrote them into its log?)');
   });
 });

@@ -27,8 +27,14 @@ export interface SupervisorRow {
   notInModel: Set<string>;
 }
 
-export function supervisorRows(catalogue: SupervisorCatalogue, s: MonitorState): SupervisorRow[] {
-  const names = [...new Set([...catalogue.keys(), ...s.supervisors.keys()])].sort();
+/**
+ * `modules`: the model's modules that are no supervisor (name -> what it is: `synchronous module`):
+ * a module's code may write supervisor records into its own log (docs/runtime-api.md "Whose
+ * records, and their times"), so the trace's supervisors the model says are such a module are not
+ * listed (notSupervisors says them once).
+ */
+export function supervisorRows(catalogue: SupervisorCatalogue, s: MonitorState, modules: ReadonlyMap<string, string> = new Map()): SupervisorRow[] {
+  const names = [...new Set([...catalogue.keys(), ...s.supervisors.keys()])].filter((n) => catalogue.has(n) || !modules.has(n)).sort();
   return names.map((name) => {
     const st = s.supervisors.get(name);
     const model = catalogue.get(name);
@@ -56,4 +62,14 @@ export function supervisorRows(catalogue: SupervisorCatalogue, s: MonitorState):
     }
     return { name, state: st, functions: fns, inModel: catalogue.size ? !!model : undefined, notInModel };
   });
+}
+
+/** The modules of the trace's supervisor records that the model says are no supervisor, each with what the model says it is. */
+export function notSupervisors(catalogue: SupervisorCatalogue, s: MonitorState, modules: ReadonlyMap<string, string>): Array<{ name: string; is: string }> {
+  return [...s.supervisors.keys()].filter((n) => !catalogue.has(n) && modules.has(n)).sort().map((name) => ({ name, is: modules.get(name)! }));
+}
+
+/** What the Monitor says once of a module the model says is no supervisor but whose log holds supervisor records. */
+export function notSupervisorText(name: string, is: string): string {
+  return `${name}: supervisor records in its log, not taken for a supervisor's: the model says ${name} is a ${is} (its code wrote them into its log?)`;
 }

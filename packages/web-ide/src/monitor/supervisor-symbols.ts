@@ -11,6 +11,8 @@ import type { SupervisorCatalogue } from './supervisor-rows.js';
 const CLASS = 5;
 const METHOD = 6;
 const KEY = 20;
+/** A module's detail (`synchronous module, C=2 ms`): what it is. */
+const MODULE_DETAIL = /^([a-z]+ module)\b/;
 
 export interface RuleLocation {
   uri: string;
@@ -23,15 +25,20 @@ export interface SupervisorSymbols {
   locations: Map<string, RuleLocation>;
   /** `SUP.F` -> its parameters as the outline shows them: `(TypeA consigne)` (the Simulate panel's hint). */
   signatures: Map<string, string>;
+  /** The model's modules (a Class whose detail says `... module`) -> what each is (`synchronous module`): no supervisor. */
+  modules: Map<string, string>;
 }
 
 export async function readSupervisorSymbols(uris: string[], symbols: (uri: string) => Promise<lsp.DocumentSymbol[] | null>): Promise<SupervisorSymbols> {
   const catalogue: SupervisorCatalogue = new Map();
   const locations = new Map<string, RuleLocation>();
   const signatures = new Map<string, string>();
+  const modules = new Map<string, string>();
   for (const uri of uris) {
     const list = (await symbols(uri).catch(() => null)) ?? [];
     for (const sup of list) {
+      const module = sup.kind === CLASS ? MODULE_DETAIL.exec(sup.detail ?? '') : null;
+      if (module) modules.set(sup.name, module[1]!);
       if (sup.kind !== CLASS || sup.detail !== 'supervisor') continue;
       let fns = catalogue.get(sup.name);
       if (!fns) catalogue.set(sup.name, (fns = new Map()));
@@ -49,5 +56,5 @@ export async function readSupervisorSymbols(uris: string[], symbols: (uri: strin
       }
     }
   }
-  return { catalogue, locations, signatures };
+  return { catalogue, locations, signatures, modules };
 }

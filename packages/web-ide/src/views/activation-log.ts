@@ -44,12 +44,44 @@ const ENGINE_SCHEMA = /^(activate|deactivate) [A-Za-z_]\w*(?: \(|$)/;
 const ENGINE_FUNCTION = /^function [A-Za-z_]\w*(?:\(.*\))? (started|stopped)$/s;
 
 /**
+ * What the project's model says of the run's modules, when the IDE has it: its supervisors' and its
+ * other modules' names. A module it names among its modules is no supervisor, whatever its log holds;
+ * one it does not name at all (another project's run, a module renamed since) is judged by its log.
+ */
+export interface ModelModules {
+  supervisors: ReadonlySet<string>;
+  /** Its modules that are no supervisor (synchronous, asynchronous). */
+  modules: ReadonlySet<string>;
+}
+
+/**
+ * The modules of a log whose runs ORD started (a `run_started` record whose peer is ORD: a
+ * release of a periodic schema): modules of schemas, never a supervisor (the engine starts none).
+ */
+function releasedModules(lines: readonly string[], file: string): Set<string> {
+  const out = new Set<string>();
+  for (let n = 1; n < lines.length; n++) {
+    const l = lines[n]!;
+    if (!l.includes(',run_started,ORD,')) continue;
+    const r = parseRecordLine(file, n + 1, l);
+    if (r.kind === 'run_started' && (r as KnownRecord).peer === 'ORD') out.add((r as KnownRecord).module);
+  }
+  return out;
+}
+
+/**
  * `file`: the log's name (a line of another module than the one it names is no record of that
  * module's). Each line the bars use is read by the trace reader (parseRecordLine, with each
  * module's time check, log-clock.ts): a line it does not read as a record, or whose time it does
  * not believe, makes no bar; `unreadable` (when given) counts them.
+ * A `supervisor` record makes its module an engine (its bars are the functions it runs, not its
+ * runs) only when it may be a supervisor: the model (`model`, when the IDE has it) names it among
+ * its supervisors, not among its other modules, or, when the model does not name it, ORD never
+ * started a run of it (a module's code may write
+ * such a line into its own log: its lane must not vanish; docs/runtime-api.md "Whose records, and
+ * their times").
  */
-export function activationsFromCsv(text: string, file = '', unreadable?: { n: number }): Activation[] {
+export function activationsFromCsv(text: string, file = '', unreadable?: { n: number }, model?: ModelModules): Activation[] {
   const lines = text.split(/\r?\n/).filter((l) => l.length > 0);
   if (!lines.length) return [];
   const header = splitCsvLine(lines[0]!);
@@ -84,6 +116,9 @@ export function activationsFromCsv(text: string, file = '', unreadable?: { n: nu
   // holds `,run_started,`, `,run_finished,`, `,event_received,`, `,scheduler,` or `,supervisor,`
   const inside = iEvent > 0 && iEvent < header.length - 1;
   const clocks = new LogClocks();
+  const released = releasedModules(lines, file);
+  const mayBeSupervisor = (module: string): boolean =>
+    model?.supervisors.has(module) ? true : model?.modules.has(module) ? false : !released.has(module);
   for (let n = 1; n < lines.length; n++) {
     const l = lines[n]!;
     if (inside && !handling.size && !l.includes(',run_started,') && !l.includes(',run_finished,') && !l.includes(',event_received,') && !l.includes(',scheduler,') && !l.includes(',supervisor,')) continue;
@@ -112,7 +147,7 @@ export function activationsFromCsv(text: string, file = '', unreadable?: { n: nu
       }
       handling.delete(module); // it reads requests again (an older runtime's log): the handler had ended
     }
-    if (event === 'scheduler' || event === 'supervisor') {
+    if (event === 'scheduler' || (event === 'supervisor' && mayBeSupervisor(module))) {
       const detail = k.detail;
       if (!engines.has(module)) {
         engines.set(module, 0);

@@ -7,7 +7,7 @@
 import { TWIN_LOGS_WHY, traceFileToLogsSteps, twinLogs, type TraceFileLogs } from '@contract-studio/build-service/trace';
 import { runSliced } from '../util/sliced.js';
 import { api, ApiError, getOk, responsePieces } from '../api.js';
-import { activationsFromCsv, type Activation } from './activation-log.js';
+import { activationsFromCsv, type Activation, type ModelModules } from './activation-log.js';
 import { fetchLauncherLines, type LauncherLine } from '../monitor/job-launcher-lines.js';
 
 export interface LogFile {
@@ -62,8 +62,11 @@ export function localLogFolders(project: string, files: readonly string[]): Arra
   }));
 }
 
-/** Every activation of the given logs, sorted by start; a file that is not a runtime log is a problem, not a crash. */
-export function activationsFromLogs(files: LogFile[]): { acts: Activation[]; errors: string[] } {
+/**
+ * Every activation of the given logs, sorted by start; a file that is not a runtime log is a problem, not a crash.
+ * `model`: what the project's model says of the modules, when the IDE has it (activationsFromCsv).
+ */
+export function activationsFromLogs(files: LogFile[], model?: ModelModules): { acts: Activation[]; errors: string[] } {
   const acts: Activation[] = [];
   const errors: string[] = [];
   // two logs of one module are said, as the Monitor and `contract trace` say them
@@ -71,7 +74,7 @@ export function activationsFromLogs(files: LogFile[]): { acts: Activation[]; err
   for (const f of files) {
     try {
       const unreadable = { n: 0 };
-      for (const a of activationsFromCsv(f.text, f.name, unreadable)) acts.push(a); // not push(...): a long run's hundreds of thousands overflow the stack
+      for (const a of activationsFromCsv(f.text, f.name, unreadable, model)) acts.push(a); // not push(...): a long run's hundreds of thousands overflow the stack
       if (unreadable.n) errors.push(`${f.name}: ${unreadable.n} line(s) of activations or engine activity that are no record, or whose time is not believed (\`contract trace\` names each), left out`);
     } catch (e) {
       errors.push(`${f.name}: ${(e as Error).message}`);

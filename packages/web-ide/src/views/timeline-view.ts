@@ -1,7 +1,7 @@
 import { h } from '../util/dom.js';
 import { api } from '../api.js';
 import type { Workspace } from '../workspace/workspace.js';
-import { inferPeriodOf, type Activation } from './activation-log.js';
+import { inferPeriodOf, type Activation, type ModelModules } from './activation-log.js';
 import { laneBars, lanesOf, lastTime, type LaneBar } from './timeline-bars.js';
 import { endGoneActivations, goneFromLauncherLines, type GoneAt } from './gone-activations.js';
 import { launcherLinesOnRecordClock } from '../monitor/job-launcher-lines.js';
@@ -45,9 +45,18 @@ export class TimelineView {
   /** The width the timeline was last fitted to (the canvas's, padding left out). */
   private fittedWidth = 0;
 
+  /** What the project's model says of its modules, read at each update (none when the IDE does not have it). */
+  private model: ModelModules | undefined;
+
+  /**
+   * `modelModules`: the project's model's supervisors and other modules (the language server's
+   * symbols), undefined when it cannot say: a module's supervisor records make it an engine only
+   * when it may be one (activation-log.ts activationsFromCsv).
+   */
   constructor(
     private readonly project: () => string,
     private readonly workspace: Workspace,
+    private readonly modelModules?: () => Promise<ModelModules | undefined>,
   ) {
     this.info = h('span', { class: 'muted' });
     this.zoom = h('input', { type: 'range', min: 0, max: 8, step: 1, value: 0, class: 'zoom', title: 'Zoom (×2 per step)', 'aria-label': 'Zoom (×2 per step)' });
@@ -111,10 +120,13 @@ export class TimelineView {
   }
 
   async update(): Promise<void> {
-    // an update that awaits the server (the local logs) and ends after a later one began (the job's
-    // logs shown when it ended) draws nothing: the later one's drawing stands
+    // an update that awaits the server (the model, the local logs) and ends after a later one began
+    // (the job's logs shown when it ended) draws nothing: the later one's drawing stands
     const seq = ++this.updates;
     const superseded = (): boolean => seq !== this.updates;
+    const model = await this.modelModules?.().catch(() => undefined);
+    if (superseded()) return;
+    this.model = model;
     if (this.source.value === 'run' && this.run) {
       // the launcher's lines of the job's log, put on the records' clock as the Monitor's replay of the job puts them
       const lines = launcherLinesOnRecordClock(this.run.files, this.run.launcherLines);
@@ -166,7 +178,7 @@ export class TimelineView {
       this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `${emptyText} ${problems.join(' ')}`.trim()));
       return;
     }
-    const { acts, errors } = activationsFromLogs(files);
+    const { acts, errors } = activationsFromLogs(files, this.model);
     const gone = goneFromLauncherLines(files, launcherLines);
     endGoneActivations(acts, gone);
     this.draw(acts, files.length + problems.length, [...problems, ...errors], gone);
