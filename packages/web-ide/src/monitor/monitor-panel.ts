@@ -116,7 +116,7 @@ export class MonitorPanel {
   private readonly schemasEl = h('div', { class: 'monitor-schemas', role: 'group', 'aria-label': 'Active schemas' });
   private readonly periodicEl = h('div', { class: 'monitor-periodic' });
   /** ORD's priority: whether the run was real-time (the story's line after ORD's start). */
-  private readonly schedEl = h('div', { class: 'monitor-sched muted', hidden: true });
+  private readonly schedEl = h('div', { class: 'monitor-sched muted', role: 'note', hidden: true });
   private readonly diagramEl = h('div', { class: 'monitor-diagram' });
   private readonly modulesEl = h('div', { class: 'monitor-modules' });
   private readonly flowsEl = h('div', { class: 'monitor-flows', role: 'group', 'aria-label': 'Deliveries' });
@@ -160,8 +160,10 @@ export class MonitorPanel {
       this.crashEl,
       h('div', { class: 'monitor-body' },
         this.boundEl,
+        // how ORD ran is the run's, not one of its schemas: a note of its own, above the sections
+        this.schedEl,
         h('section', { class: 'monitor-section' }, h('h3', {}, 'Supervisors'), this.supEl),
-        h('section', { class: 'monitor-section' }, h('h3', {}, 'Active schemas'), this.schedEl, this.schemasEl, this.periodicEl),
+        h('section', { class: 'monitor-section' }, h('h3', {}, 'Active schemas'), this.schemasEl, this.periodicEl),
         h('section', { class: 'monitor-section monitor-arch' }, h('h3', {}, 'Architecture'), this.modulesEl, this.diagramEl, this.flowsEl)));
     // a control focused by Tab in a short pane (a laptop at 150 %) is scrolled into view, not left
     // below the pane's edge
