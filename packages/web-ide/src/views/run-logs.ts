@@ -4,7 +4,7 @@
  * service collected from a sandboxed Build & Run job (`GET /api/jobs/:id/artifacts[/<name>]`,
  * docs/build-service-api.md), or a trace file of the workspace read as the logs it was written from.
  */
-import { TWIN_LOGS_WHY, traceFileToLogsSteps, twinLogs, type TraceFileLogs } from '@contract-studio/build-service/trace';
+import { TWIN_LOGS_WHY, isLogHeaderIn, traceFileToLogsSteps, twinLogs, type TraceFileLogs } from '@contract-studio/build-service/trace';
 import { runSliced } from '../util/sliced.js';
 import { api, ApiError, getOk, responsePieces } from '../api.js';
 import { activationsFromCsv, type Activation, type ModelModules } from './activation-log.js';
@@ -62,6 +62,13 @@ export function localLogFolders(project: string, files: readonly string[]): Arra
   }));
 }
 
+/** Whether a file's first line is the runtime's header (an empty file too: it holds nothing). */
+function beginsAsLog(f: LogFile): boolean {
+  const head = f.pieces?.[0] ?? f.text;
+  const nl = head.indexOf('\n');
+  return head === '' || isLogHeaderIn(head, 0, nl < 0 ? head.length : nl);
+}
+
 /**
  * Every activation of the given logs, sorted by start; a file that is not a runtime log is a problem, not a crash.
  * `model`: what the project's model says of the modules, when the IDE has it (activationsFromCsv).
@@ -69,8 +76,9 @@ export function localLogFolders(project: string, files: readonly string[]): Arra
 export function activationsFromLogs(files: LogFile[], model?: ModelModules): { acts: Activation[]; errors: string[] } {
   const acts: Activation[] = [];
   const errors: string[] = [];
-  // two logs of one module are said, as the Monitor and `contract trace` say them
-  for (const [m, names] of twinLogs(files.map((f) => f.name))) errors.push(`${m}: ${names.length} logs of it (${names.slice(0, 3).join(', ')}${names.length > 3 ? ', ...' : ''}), read as one: ${TWIN_LOGS_WHY}`);
+  // two logs of one module are said, as the Monitor and `contract trace` say them (a file that is
+  // no log, its first line not the runtime's header, is none of its module's logs: said below)
+  for (const [m, names] of twinLogs(files.filter(beginsAsLog).map((f) => f.name))) errors.push(`${m}: ${names.length} logs of it (${names.slice(0, 3).join(', ')}${names.length > 3 ? ', ...' : ''}), read as one: ${TWIN_LOGS_WHY}`);
   for (const f of files) {
     try {
       const unreadable = { n: 0 };

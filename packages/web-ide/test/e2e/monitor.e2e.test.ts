@@ -122,7 +122,8 @@ describe('Monitor in headless Chromium', () => {
     // a folder where a file named like a log is 40 MB of short lines that are no records
     mkdirSync(join(s.workspace, 'junk-run'));
     writeFileSync(join(s.workspace, 'junk-run', 'ORD_29-Nov-2026-10h00m00s.csv'), ord.slice(0, 1002).join('\n') + '\n');
-    writeFileSync(join(s.workspace, 'junk-run', 'JNK_29-Nov-2026-10h00m00s.csv'), 'x\n'.repeat(20_000_000));
+    // (after the runtime's header: a file without it is no log, refused whole at its line 1)
+    writeFileSync(join(s.workspace, 'junk-run', 'JNK_29-Nov-2026-10h00m00s.csv'), `${ord[0]}\n${'x\n'.repeat(20_000_000)}`);
     await openIde(s);
   }, 60_000);
   afterAll(async () => {
@@ -302,7 +303,7 @@ describe('Monitor in headless Chromium', () => {
     const { page } = s;
     await page.evaluate(() => window.__ide.monitor.openFolder('junk-run'));
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 })
-      .toBe('2 CSV log(s) in junk-run · 1,001 record(s), 100,000 unreadable line(s) (not whole: JNK_29-Nov-2026-10h00m00s.csv: more than 100000 lines that are not trace records, the rest of it from line 100001 left out)');
+      .toBe('2 CSV log(s) in junk-run · 1,001 record(s), 100,000 unreadable line(s) (not whole: JNK_29-Nov-2026-10h00m00s.csv: more than 100000 lines that are not trace records, the rest of it from line 100002 left out)');
     // ORD's 1,001 records and the 100,000 unreadable lines kept: counted, the rest not read
     const m = await page.evaluate(() => { const c = window.__ide.monitor.current!; return { n: c.recordCount, records: c.live.records, unknown: c.live.unknownLines }; });
     expect(m).toEqual({ n: 1001 + 100_000, records: 1001, unknown: 100_000 });
