@@ -548,8 +548,11 @@ export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, ex
     }
     const buildErrors = result.step === 'build' ? job.diagnostics.filter((x) => x.severity === 'error').length : 0;
     if (!result.ok && result.step === 'build' && !buildErrors && !opts.verbose && outcome.buildTail.length && job.status !== 'cancelled' && !result.limitHit) {
-        // nothing gcc or ld reported: make's and the tools' error lines say why (the assembler's, a tool killed)
-        io.err(`no compiler or linker error was reported; the build's last error lines:\n${outcome.buildTail.map((l) => `  | ${safeName(l.length > 500 ? `${l.slice(0, 500)}…` : l)}\n`).join('')}`);
+        // nothing gcc or ld reported: make's and the tools' error lines say why (the assembler's, a tool killed);
+        // or gcc's diagnostics could not be read (the job's warning): its errors may be among them
+        const unread = job.unreadableDiagnosticLines;
+        const said = unread ? `gcc's diagnostics could not be read (${unread} line(s) of its JSON output): no error of theirs is reported, they may hold the build's errors` : 'no compiler or linker error was reported';
+        io.err(`${said}; the build's last error lines:\n${outcome.buildTail.map((l) => `  | ${safeName(l.length > 500 ? `${l.slice(0, 500)}…` : l)}\n`).join('')}`);
     }
     if (!result.ok && result.step === 'build' && job.status !== 'cancelled') {
         if (buildErrors) io.err(`fix the gcc errors above (your code is in the PROTECTED REGION blocks of ${safeName(join(opts.dirArg, SRC_GEN_DIR))} and in any file of your own there), then build again; --verbose shows every build line\n`);

@@ -145,6 +145,16 @@ describe('a build that fails with no compiler, assembler or linker diagnostic', 
         ].join('\n'));
     });
 
+    it('says when gcc\'s diagnostics could not be read (a line of its JSON unreadable), not that no error was reported', () => {
+        const tail = ['[{"kind": "error", "message": "x" ,, ]', 'make[1]: *** [Makefile:23: CTL] Error 1'];
+        const outcome = failed(tail, []);
+        (outcome.job as unknown as { unreadableDiagnosticLines: number }).unreadableDiagnosticLines = 1;
+        const io = capture(root);
+        reportBuild({ format: 'text', dirArg: 'cell' } as Parameters<typeof reportBuild>[0], outcome, io);
+        expect(io.stderr).not.toContain('no compiler or linker error was reported');
+        expect(io.stderr).toContain("gcc's diagnostics could not be read (1 line(s) of its JSON output): no error of theirs is reported, they may hold the build's errors; the build's last error lines:\n  | [{\"kind\": \"error\"");
+    });
+
     it('keeps the last 15 such lines, each cut at 500 characters, its controls escaped; with a diagnostic, the usual words', () => {
         const tail: string[] = [];
         for (let i = 0; i < 40; i++) noteBuildErrorLine(tail, { type: 'line', step: 'build', source: 'build', stream: 'stdout', line: `error ${i}: \u001b[2J${'x'.repeat(i === 39 ? 900 : 1)}` } as never);

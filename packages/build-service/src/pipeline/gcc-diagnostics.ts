@@ -3,6 +3,7 @@
  * of gcc's output are gcc-json.ts (JSON lines) and gcc-text.ts (text lines).
  */
 import { posix } from 'node:path';
+import { visibleText } from '@contract-studio/conventions';
 import { regionAt, type ProtectedRegion } from './protected-regions.js';
 import { withMigrationHint } from './migration-hints.js';
 import type { OrphanedDefinitions } from './orphan-hints.js';
@@ -98,14 +99,15 @@ export function severityOf(kind: unknown): GccDiagnostic['severity'] {
 
 /**
  * Places a diagnostic in the tree: root-relative file (when inside it) and its protected region;
- * its message gets the hint of a problem of code carried over from the ContrACT Eclipse tool (migration-hints.ts).
+ * its message is written visibly (a control character of a `#warning` as its escape, `\u0007`), and gets the hint of a problem of code carried over from the ContrACT Eclipse tool (migration-hints.ts).
  */
 export function located(
   found: Omit<GccDiagnostic, 'file' | 'protectedRegion'>,
   rawFile: string | null,
   ctx: DiagnosticContext,
 ): GccDiagnostic {
-  const base = { ...found, message: withMigrationHint(found.message) };
+  // a message says the user's text (a `#warning`'s): its control and invisible characters are written as their escapes (visibleText), as shown everywhere
+  const base = { ...found, message: withMigrationHint(visibleText(found.message)) };
   const file = rawFile === null ? null : (relativeToRoot(rawFile, ctx) ?? rawFile);
   const regions = file ? ctx.regions.get(file) : undefined;
   const protectedRegion = regions && base.line !== null ? regionAt(regions, base.line) : null;

@@ -12,7 +12,7 @@ import { afterAll, describe, expect, test } from 'vitest';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { LineSplitter } from '../util/line-splitter.js';
 import { looksLikeGccJson, MESSAGE_CUT, parseCutGccJsonLine, parseGccJsonLine } from './gcc-json.js';
-import { BuildOutputRouter } from './output-router.js';
+import { BuildOutputRouter, GCC_JSON_UNREADABLE } from './output-router.js';
 
 const dir = mkdtempSync(join(tmpdir(), 'gccjson-cut-'));
 afterAll(() => rmSync(dir, { recursive: true, force: true }));
@@ -118,11 +118,11 @@ describe('a compilation of hundreds of diagnostics (one gcc JSON line)', () => {
     ]);
   });
 
-  test('a cut line with no complete diagnostic, or a JSON-looking line that is no gcc output, stays text', () => {
+  test('a cut line with no complete diagnostic, or a JSON-looking line that is no gcc output, stays text, said unreadable', () => {
     const router = new BuildOutputRouter({ startDir: dir, root: dir, regions: new Map(), diagnosticsOnStdout: true });
     for (const line of [compile(1, 0).slice(0, 40), '[{"kind":"error","message":"x"', `[${'{"kind":"error","children":['.repeat(200)}{"kind":"error"}`]) {
       expect(parseCutGccJsonLine(line, ctx())).toBeNull();
-      expect(router.route(line, 'stdout')).toEqual({ lines: [{ source: 'build', line }], diagnostics: [] });
+      expect(router.route(line, 'stdout')).toEqual({ lines: [{ source: 'build', line }], diagnostics: [], unreadable: GCC_JSON_UNREADABLE });
     }
   });
 });

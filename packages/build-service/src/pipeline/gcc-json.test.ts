@@ -5,7 +5,7 @@
 import { describe, expect, test } from 'vitest';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { parseGccJsonLine } from './gcc-json.js';
-import { BuildOutputRouter } from './output-router.js';
+import { BuildOutputRouter, GCC_JSON_UNREADABLE } from './output-router.js';
 
 const ctx = { cwd: '/work/src-gen/MAA_mod', root: '/work/src-gen', regions: new Map() };
 
@@ -40,6 +40,7 @@ describe('gcc JSON lines of the wrong shape stay text', () => {
     const routed = router.route(line, 'stderr');
     expect(routed.diagnostics).toEqual([]);
     expect(routed.lines).toEqual([{ source: 'build', line }]);
+    expect(routed.unreadable).toBe(GCC_JSON_UNREADABLE); // said: the diagnostics it may hold are not reported
   });
 });
 

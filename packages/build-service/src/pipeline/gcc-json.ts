@@ -9,6 +9,7 @@ import { z } from 'zod';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { located, severityOf, type DiagnosticContext, type GccDiagnostic } from './gcc-diagnostics.js';
 import { completeDiagnosticsPrefix } from './gcc-json-salvage.js';
+import { parseGccJson } from './gcc-json-controls.js';
 
 const text = z.string().max(SERVICE_BOUNDS.diagnosticTextChars);
 /** Line and column numbers: non-negative integers of a plausible size. */
@@ -93,12 +94,9 @@ export function errorsFirst(diagnostics: readonly GccDiagnostic[]): GccDiagnosti
 }
 
 function parseDiagnostics(text: string, ctx: DiagnosticContext, noMessage = ''): GccDiagnostic[] | null {
-  let data: unknown;
-  try {
-    data = JSON.parse(text);
-  } catch {
-    return null;
-  }
+  // a raw control character of a message (gcc writes a `#warning`'s as they are) is read as its escape
+  const data = parseGccJson(text);
+  if (data === undefined) return null;
   const parsed = GCC_JSON_LINE.safeParse(data);
   if (!parsed.success) return null;
   return asReported(parsed.data.map((d) => fromJson(d, ctx, noMessage)));
@@ -152,12 +150,7 @@ function withinBounds(list: unknown[], bound: number, depth: number): { list: un
  * unless they alone pass the bound).
  */
 export function parseOverfullGccJsonLine(line: string, ctx: DiagnosticContext): { diagnostics: GccDiagnostic[]; left: number } | null {
-  let data: unknown;
-  try {
-    data = JSON.parse(line);
-  } catch {
-    return null;
-  }
+  const data = parseGccJson(line);
   if (!Array.isArray(data)) return null;
   const { list, left } = withinBounds(data, SERVICE_BOUNDS.diagnosticsPerJsonLine, SERVICE_BOUNDS.diagnosticDepth);
   if (!left) return null;

@@ -154,6 +154,8 @@ export class Job {
   /** The makefiles of the generated tree prepare refused the project for (foreign-makefiles.ts), project-relative; empty otherwise. */
   foreignMakefiles: readonly string[] = [];
   readonly warnings: string[] = [];
+  /** How many lines of gcc's JSON diagnostics the build could not read (GCC_JSON_UNREADABLE): their diagnostics are not reported. */
+  unreadableDiagnosticLines = 0;
   /** What sandbox was picked and why ("sandbox auto: picked bwrap (...)"). */
   sandboxNote = '';
   /** The run's CSV logs (and what was left out), collected from the sandbox once the run step ended. */
@@ -463,6 +465,11 @@ export class Job {
       const build = await this.runStep(ctx.sandbox, ws, runtimeDir, 'build', argv, this.request.limits.buildSeconds, (line, stream) => {
         const routed = router.route(line, stream);
         for (const d of routed.diagnostics) this.addDiagnostic(d);
+        if (routed.unreadable && this.unreadableDiagnosticLines++ === 0) {
+          // said once among the job's warnings and in its log; the build's message counts them
+          this.warnings.push(routed.unreadable);
+          this.system('build', `warning: ${routed.unreadable}`);
+        }
         if (routed.cut) {
           // said among the job's warnings and in its log, before the diagnostics read from the line
           this.warnings.push(routed.cut);
@@ -478,7 +485,7 @@ export class Job {
       }
       if (!build.ok) {
         const errors = this.diagnostics.filter((d) => d.severity === 'error').length;
-        const message = (build.message ?? (errors ? `build failed: ${errors} error(s) (make exit ${build.exitCode})` : `build failed (make exit ${build.exitCode})`)) + this.buildOutputCut();
+        const message = (build.message ?? (errors ? `build failed: ${errors} error(s) (make exit ${build.exitCode})` : `build failed (make exit ${build.exitCode})`)) + this.unreadableDiagnostics() + this.buildOutputCut();
         this.result = this.makeResult('build', false, build.exitCode, build.signal, message, build.limitHit);
         this.finish(this.cancelRequested ? 'cancelled' : 'failed');
         return;
@@ -1018,6 +1025,12 @@ export class Job {
     const cut = step === 'build' ? this.buildOutputCut() : '';
     this.system(step, ok ? `${step} finished in ${this.durations[step]} ms${cut}` : `${step}: ${message ?? `exit ${exit.exitCode}${exit.signal ? ` (${exit.signal})` : ''}`}${cut}`);
     return { ok, exitCode: exit.exitCode, signal: exit.signal, limitHit, message };
+  }
+
+  /** `; 1 line(s) of gcc's JSON diagnostics could not be read: ...` when some could not (their errors unreported), else ''. */
+  private unreadableDiagnostics(): string {
+    const n = this.unreadableDiagnosticLines;
+    return n ? `; ${n} line(s) of gcc's JSON diagnostics could not be read: their diagnostics, errors among them, are not reported (the build's log has them as text)` : '';
   }
 
   /** `; its stdout was cut at the output limit (...)` when the build step's output was cut, else ''. */

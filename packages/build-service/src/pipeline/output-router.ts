@@ -50,7 +50,7 @@ export class BuildOutputRouter {
    * Returns the lines to log and the diagnostics found in one output line; `cut` says when they
    * were read from a gcc JSON line that was cut (the job's warning), what followed being lost.
    */
-  route(line: string, stream: 'stdout' | 'stderr'): { lines: RoutedLine[]; diagnostics: GccDiagnostic[]; cut?: string } {
+  route(line: string, stream: 'stdout' | 'stderr'): { lines: RoutedLine[]; diagnostics: GccDiagnostic[]; cut?: string; unreadable?: string } {
     // untrusted text: no regular expression sees more than the parsed-line bound (docs/sandbox.md)
     const head = line.length > SERVICE_BOUNDS.parsedLineChars ? line.slice(0, SERVICE_BOUNDS.parsedLineChars) : line;
     const entering = makeEnteringDirectory(head);
@@ -73,6 +73,8 @@ export class BuildOutputRouter {
         const said = gccJsonCutMessage(line.length, cut.readChars, cut.diagnostics);
         return { lines: rendered(cut.diagnostics), diagnostics: errorsFirst(cut.diagnostics), cut: said };
       }
+      // gcc's line that cannot be read at all: logged as text, and said (its errors are not reported)
+      return { lines: [{ source: 'build', line }], diagnostics: [], unreadable: GCC_JSON_UNREADABLE };
     }
     const text = parseGccTextLine(line, ctx);
     if (text) return { lines: [{ source: 'build', line }], diagnostics: text.severity !== 'note' ? [text] : [] };
@@ -89,6 +91,14 @@ export class BuildOutputRouter {
 function rendered(diags: GccDiagnostic[]): RoutedLine[] {
   return diags.flatMap((d) => [d, ...d.children]).map((d) => ({ source: 'build', line: renderDiagnostic(d) }));
 }
+
+/**
+ * What a build says of a line that begins as gcc's JSON diagnostics and cannot be read, not even
+ * with its raw control characters escaped (gcc-json-controls.ts), nor as a cut line: the
+ * diagnostics it held are not reported.
+ */
+export const GCC_JSON_UNREADABLE = "a line of gcc's JSON diagnostics (one compilation's) could not be read (not JSON of gcc's shape, even with its control characters escaped): "
+  + "the diagnostics it held, its errors among them, are not reported; the line is in the build's log as text (--verbose, GET /api/jobs/:id/log)";
 
 /** What a build says of a gcc JSON line that held more diagnostics than are read: which were, how many were not. */
 export function gccJsonOverfullMessage(diags: readonly GccDiagnostic[], left: number): string {
