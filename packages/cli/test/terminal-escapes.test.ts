@@ -72,6 +72,8 @@ describe('sandbox output through a real contract run (bwrap)', () => {
     // OSC title, CSI clear, an 8-bit C1 CSI (UTF-8 U+009B), a raw 0x9b byte, a bare CR overwrite, DEL, BEL
     const printed = '\\033]0;pwned\\007\\033[2J\\302\\23331mred\\233x\\rOVER\\177\\a';
     const expectedRaw = '\x1b]0;pwned\x07\x1b[2J\x9b31mred\ufffdx\rOVER\x7f\x07';
+    // the characters of no width: U+200B, U+200C, U+200D, the word joiner U+2060, the BOM U+FEFF (UTF-8, as C octal escapes)
+    const zeroWidth = 'go\\342\\200\\213|\\342\\200\\214|\\342\\200\\215|\\342\\201\\240|\\357\\273\\277';
 
     beforeAll(() => {
         expect(contract(['new', 'esc']).code).toBe(0);
@@ -80,7 +82,7 @@ describe('sandbox output through a real contract run (bwrap)', () => {
         const source = readFileSync(file, 'utf8');
         const patched = source.replace(
             /(PROTECTED REGION ID\(protect_init_CTL\) ENABLED START\*\/)/,
-            `$1\n    printf("ESC<${printed}>\\n"); fflush(stdout);`,
+            `$1\n    printf("ESC<${printed}>\\n"); printf("ZW<${zeroWidth}>\\n"); fflush(stdout);`,
         );
         expect(patched).not.toBe(source);
         writeFileSync(file, patched);
@@ -93,11 +95,45 @@ describe('sandbox output through a real contract run (bwrap)', () => {
         expect(r.stdout).toContain('[CTL] ESC<\\u001b]0;pwned\\u0007\\u001b[2J\\u009b31mred\ufffdx\\u000dOVER\\u007f\\u0007>\n');
     }, 300_000);
 
+    it('characters of no width are shown as their escapes: two values that differ never look the same', () => {
+        const r = contract(['run', 'esc', '--sandbox', 'bwrap', '--duration', '1s', '--logs', 'esc-logs']);
+        expect(r.stderr).toContain('ok: run finished');
+        expect(r.stdout + r.stderr).not.toMatch(/[\u200b-\u200d\u2060\ufeff]/);
+        expect(r.stdout).toContain('[CTL] ZW<go\\u200b|\\u200c|\\u200d|\\u2060|\\ufeff>\n');
+    }, 300_000);
+
     it('--format json keeps the raw line (escaped as JSON, no raw control character on stdout)', () => {
         const r = contract(['run', 'esc', '--sandbox', 'bwrap', '--duration', '1s', '--logs', 'esc-logs', '--format', 'json']);
         expect(r.stdout).not.toMatch(RAW_CONTROL);
         const json = JSON.parse(r.stdout) as { ok: boolean; output: { source: string; line: string }[] };
         expect(json.ok).toBe(true);
         expect(json.output).toContainEqual(expect.objectContaining({ source: 'CTL', line: `ESC<${expectedRaw}>` }));
+    }, 300_000);
+});
+
+describe('a #warning holding a control character, through a real contract build (bwrap)', () => {
+    // the field tester's region: gcc wrote the BEL raw inside its JSON line, which then read as no
+    // JSON; the build said "no compiler or linker error was reported" over a real error
+    const region = ['#warning "plain warning one"', '#warning "bell \x07 here"', 'int undeclared_use(void){ return nosuchvar; }'].join('\n');
+
+    beforeAll(() => {
+        expect(contract(['new', 'bel']).code).toBe(0);
+        expect(contract(['generate', 'bel']).code).toBe(0);
+        const file = join(root, 'bel', 'src-gen/generated/architecture/modules/CTL_mod/module.c');
+        const source = readFileSync(file, 'utf8');
+        const patched = source.replace(/(PROTECTED REGION ID\(protect_additional_import_CTL\) ENABLED START\*\/)/, `$1\n${region}`);
+        expect(patched).not.toBe(source);
+        writeFileSync(file, patched);
+    }, 120_000);
+
+    it('reports the error at its line and both warnings, the BEL written \\u0007', () => {
+        const r = contract(['build', 'bel', '--sandbox', 'bwrap']);
+        expect(r.code).toBe(1);
+        expect(r.stdout + r.stderr).not.toMatch(RAW_CONTROL);
+        expect(r.stderr).not.toContain('no compiler or linker error was reported');
+        expect(r.stderr).toMatch(/module\.c:\d+:\d+: error: .nosuchvar. undeclared .*\[in protected region protect_additional_import_CTL\]/);
+        expect(r.stderr).toMatch(/module\.c:\d+:\d+: warning: #warning "plain warning one" \[-Wcpp\]/);
+        expect(r.stderr).toMatch(/module\.c:\d+:\d+: warning: #warning "bell \\u0007 here" \[-Wcpp\]/);
+        expect(r.stderr).toContain('FAILED: build failed: 1 error(s) (make exit 2)');
     }, 300_000);
 });

@@ -299,6 +299,26 @@ describe('contract trace', () => {
         }
     });
 
+    it('characters of no width (U+200B-U+200D, U+2060, the BOM U+FEFF) in a record are shown as their escapes, in the story and the JSON alike', async () => {
+        const odd = mkdtempSync(join(tmpdir(), 'contract-trace-zw-'));
+        try {
+            writeFileSync(join(odd, 'SUP_1.csv'), [HEADER,
+                '2000000000,w,SUP,supervisor,,,0,function action started',
+                '2500000000,w,SUP,sup_rule,,,0,"action.SECOND active cause=MAA:2 value=""go\u200b\u200c\u200d\u2060\ufeff"""', ''].join('\n'));
+            const io = capture(odd);
+            expect(await runCli(['trace', '.'], io)).toBe(0);
+            expect(io.stdout).not.toMatch(/[\u200b-\u200d\u2060\ufeff]/);
+            expect(io.stdout).toContain('"go\\u200b\\u200c\\u200d\\u2060\\ufeff"');
+            const json = capture(odd);
+            expect(await runCli(['trace', '.', '--format', 'json'], json)).toBe(0);
+            expect(json.stdout).not.toMatch(/[\u200b-\u200d\u2060\ufeff]/);
+            const rule = json.stdout.trim().split('\n').map((l) => JSON.parse(l) as TraceRecord).find((r) => r.kind === 'sup_rule') as { detail: string };
+            expect(rule.detail).toContain('go\u200b\u200c\u200d\u2060\ufeff'); // the JSON parses back to the raw value
+        } finally {
+            rmSync(odd, { recursive: true });
+        }
+    });
+
     it('a trace file cannot forge story lines: a newline or a bidi override in a detail or a reason stays inside its line', async () => {
         const odd = mkdtempSync(join(tmpdir(), 'contract-trace-forge-'));
         try {

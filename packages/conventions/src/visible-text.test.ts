@@ -11,6 +11,15 @@ describe('visibleText', () => {
   });
 });
 
+describe('visibleText and the characters of no width', () => {
+  it('writes U+200B-U+200D, the word joiner U+2060 and the BOM U+FEFF as their escapes: two values that differ never look the same', () => {
+    expect(visibleText('"go\u200b" "go\u200c\u200d" \u2060x\ufeff')).toBe('"go\\u200b" "go\\u200c\\u200d" \\u2060x\\ufeff');
+    expect(visibleText('go\u200b', { keepNewlines: true })).not.toBe(visibleText('go', { keepNewlines: true }));
+    // the characters around them that are seen stay as they are
+    expect(visibleText('\u200a\u2010\u2061\ufefe')).toBe('\u200a\u2010\u2061\ufefe');
+  });
+});
+
 describe('visibleText with escapeTab (a name inside a message: the CLI\'s safeName)', () => {
   it('writes a tab as its escape too, and everything else as visibleText does', () => {
     expect(visibleText('t\tb\nc', { escapeTab: true })).toBe('t\\u0009b\\u000ac');

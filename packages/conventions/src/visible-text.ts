@@ -1,5 +1,9 @@
-/** What is always written as its escape: every control but tab and newline, DEL, C1, the marks, separators, overrides and isolates. */
-const ALWAYS_ESCAPED = '\\x00-\\x08\\x0b-\\x1f\\x7f-\\x9f\\u061c\\u200e\\u200f\\u2028\\u2029\\u202a-\\u202e\\u2066-\\u2069';
+/**
+ * What is always written as its escape: every control but tab and newline, DEL, C1, the marks,
+ * separators, overrides and isolates, and the characters of no width (U+200B–U+200D, the word
+ * joiner U+2060, the BOM U+FEFF), which make two different values look the same.
+ */
+const ALWAYS_ESCAPED = '\\x00-\\x08\\x0b-\\x1f\\x7f-\\x9f\\u061c\\u200b-\\u200f\\u2028\\u2029\\u202a-\\u202e\\u2060\\u2066-\\u2069\\ufeff';
 
 export interface VisibleTextOptions {
   /**
@@ -30,9 +34,10 @@ function escapedPattern(options: VisibleTextOptions): RegExp {
  * /api/jobs/:id/log), and the names inside the CLI's messages (its safeName). A line break would
  * begin a line that reads as the service's or the CLI's, and an ESC or CSI would act on the
  * terminal of whoever reads it: a bidirectional override or isolate (U+202A–U+202E, U+2066–U+2069),
- * a directional mark (U+200E, U+200F, U+061C), a line or paragraph separator and any control
- * character but a tab are written `\u202e` and so on. Shown raw, `…\u202e BIDI evil` read
- * "live IDIB", and a log name with one reversed the rest of the Monitor's run label.
+ * a directional mark (U+200E, U+200F, U+061C), a line or paragraph separator, a character of no
+ * width (U+200B–U+200D, U+2060, U+FEFF) and any control character but a tab are written `\u202e`
+ * and so on. Shown raw, `…\u202e BIDI evil` read "live IDIB", a log name with one reversed the
+ * rest of the Monitor's run label, and `"go\u200b"` looked like `"go"`.
  */
 export function visibleText(text: string, options: VisibleTextOptions = {}): string {
   return text.replace(escapedPattern(options), (c) => `\\u${c.charCodeAt(0).toString(16).padStart(4, '0')}`);

@@ -7,6 +7,7 @@
  * escape sequence shows as text and a bare CR cannot overwrite the report's line) and bounded
  * (long lines cut, a few lines a step: `--format json` keeps the step's whole output).
  */
+import { visibleText } from '@contract-studio/conventions';
 
 export interface OutputBounds {
     /** Characters of one printed line shown; the rest is counted. */
@@ -17,11 +18,9 @@ export interface OutputBounds {
 
 export const OUTPUT_BOUNDS: OutputBounds = { lineChars: 240, linesPerStep: 20 };
 
-/** C0 but tab, DEL, C1, the line and paragraph separators, the bidi embeddings, overrides and isolates (as the CLI's escapeControls). */
-const CONTROL = /[\x00-\x08\x0b-\x1f\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069]/g;
-
+/** C0 but tab, DEL, C1, the separators, marks, bidi embeddings, overrides and isolates, the characters of no width: the CLI's rule (conventions' visibleText). */
 function escaped(text: string): string {
-    return text.replace(CONTROL, (c) => `\\u${c.charCodeAt(0).toString(16).padStart(4, '0')}`);
+    return visibleText(text);
 }
 
 /** The report's lines for `output` (none when nothing was printed), each starting with `indent` then `output| `. */
