@@ -14,6 +14,7 @@
 import type { Mark } from './model-view.js';
 import { marksIn } from './model-view.js';
 import { fmtT } from './panel-text.js';
+import { visibleText } from '@contract-studio/conventions';
 
 /** Colours by index (0: no mark); a rule switched off is grey. */
 const PALETTE = ['', '#98c379', '#5c6370', '#61afef', '#e06c75', '#d19a66', '#c678dd', '#e5c07b', '#ff6ac1', '#56b6c2', '#ffffff'];
@@ -27,7 +28,8 @@ const TOOLTIP_PX = 3;
 
 /** The tooltip of the marks `under` the pointer: one line each, `+2.210000 s velocityLoop: deadline miss (ORD:0) cycle 220 (not finished: VEL)`. */
 export function markTooltip(under: readonly Mark[]): string {
-  const lines = under.slice(0, TOOLTIP_MARKS).map((m) => `${fmtT(m.t)} ${m.where}: ${m.label}`);
+  // a mark's place and label say a record's names and values: written visibly (conventions' visibleText)
+  const lines = under.slice(0, TOOLTIP_MARKS).map((m) => `${fmtT(m.t)} ${visibleText(`${m.where}: ${m.label}`)}`);
   if (under.length > TOOLTIP_MARKS) lines.push(`… and ${under.length - TOOLTIP_MARKS} more mark(s) here`);
   return lines.join('\n');
 }

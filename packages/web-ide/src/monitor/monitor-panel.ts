@@ -24,7 +24,7 @@ import { MarksStrip, markTooltip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { unheardEventText } from '@contract-studio/build-service/trace';
 import { notSupervisorText, notSupervisors, supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
-import { NOT_IN_MODEL, crashedModulesText, notReleasedText, schedulingText, flowDropText, flowValueText, flowWaitText, flowWaitTitle, fmtT, followButton, keptRequestsLine, moduleCpuText, namesPastBoundText, releaseLatenessText, lateReleasesText, ruleTexts, quietDataFlowRow, isSimulatedFlowsLine, noActiveSchemaText, timeReadout, unheardEventsRow } from './panel-text.js';
+import { NOT_IN_MODEL, crashedModulesText, flowRow, notReleasedText, schedulingText, flowWaitTitle, fmtT, followButton, keptRequestsLine, moduleCpuText, namesPastBoundText, releaseLatenessText, lateReleasesText, ruleTexts, quietDataFlowRow, isSimulatedFlowsLine, noActiveSchemaText, timeReadout, unheardEventsRow } from './panel-text.js';
 import { visibleText } from '@contract-studio/conventions';
 import { shortAtWord } from '../util/short-text.js';
 
@@ -466,7 +466,7 @@ export class MonitorPanel {
           const rs = st?.rules.get(`${fn}.${rule}`);
           const el = this.row(`rule:${sup}.${fn}.${rule}`, () => {
             const b = h('button', { class: 'monitor-rule', 'data-rule': `${sup}.${fn}.${rule}` },
-              h('span', { class: 'rule-dot', 'aria-hidden': 'true' }), h('span', { class: 'rule-name' }, rule), h('span', { class: 'rule-cause' }), h('span', { class: 'rule-time' }));
+              h('span', { class: 'rule-dot', 'aria-hidden': 'true' }), h('span', { class: 'rule-name' }, visibleText(rule)), h('span', { class: 'rule-cause' }), h('span', { class: 'rule-time' }));
             b.addEventListener('click', () => this.deps.openRule(sup, fn, rule));
             return b;
           });
@@ -522,7 +522,7 @@ export class MonitorPanel {
       const cd = times?.cd, period = times?.period;
       let hist = this.hists.get(name);
       if (!hist) {
-        const canvas = h('canvas', { class: 'monitor-hist', width: 320, height: 70, role: 'img', 'aria-label': `Response times of ${name} against CRITICAL_DELAY and PERIOD` });
+        const canvas = h('canvas', { class: 'monitor-hist', width: 320, height: 70, role: 'img', 'aria-label': visibleText(`Response times of ${name} against CRITICAL_DELAY and PERIOD`) });
         const text = h('div', { class: 'monitor-pstats' });
         const misses = h('div', { class: 'monitor-misses' });
         const title = h('div', { class: 'monitor-pname' });
@@ -558,7 +558,7 @@ export class MonitorPanel {
           all > shown ? [h('span', { class: 'miss-more', title: 'The earlier ones are marked on the timeline ([ and ] step through the marks)' }, `the last ${shown} of ${all} ${what}:`)] : [];
         // each is a button: a click (or Enter) moves the cursor to it, as the strip's marks do
         const chip = (cls: string, t: number, label: string, text: string, cycle?: number) => {
-          const b = h('button', { type: 'button', class: cls, ...(cycle !== undefined ? { 'data-cycle': cycle } : {}), title: `${label} (click: the cursor goes there)` }, text);
+          const b = h('button', { type: 'button', class: cls, ...(cycle !== undefined ? { 'data-cycle': cycle } : {}), title: `${visibleText(label)} (click: the cursor goes there)` }, text);
           b.addEventListener('click', () => this.seek(t));
           return b;
         };
@@ -653,21 +653,21 @@ export class MonitorPanel {
     // (a flow that drops values comes first: its consumer does not read it)
     // the events no one received first (why a rule waiting for them did not fire), each port's
     const unheard = [...s.unheardEvents].sort((a, b) => b[1].count - a[1].count).slice(0, 12).map(([port, f]) => {
-      const el = this.row(`unheard:${port}`, () => h('div', { class: 'monitor-flow event unheard', 'data-unheard': port, title: unheardEventText(port) }));
+      const el = this.row(`unheard:${port}`, () => h('div', { class: 'monitor-flow event unheard', 'data-unheard': port, title: visibleText(unheardEventText(port)) }));
       setText(el, unheardEventsRow(port, f));
       return el;
     });
     // the connected data flows that delivered nothing or far less than read, once the records are over (trace's words)
     const quiet = (this.model?.live ?? s).quietDataFlows.slice(0, 12 - unheard.length).map((line) => {
-      const el = this.row(`quiet:${line}`, () => h('div', { class: `monitor-flow data quiet${isSimulatedFlowsLine(line) ? ' simulated' : ''}`, title: line }));
+      const el = this.row(`quiet:${line}`, () => h('div', { class: `monitor-flow data quiet${isSimulatedFlowsLine(line) ? ' simulated' : ''}`, title: visibleText(line) }));
       setText(el, quietDataFlowRow(line));
       return el;
     });
-    const flows = [...[...s.dataFlows].map(([k, f]) => ({ k, f, kind: 'data' })), ...[...s.eventFlows].map(([k, f]) => ({ k, f, kind: 'event' }))]
+    const flows = [...[...s.dataFlows].map(([k, f]) => ({ k, f, kind: 'data' as const })), ...[...s.eventFlows].map(([k, f]) => ({ k, f, kind: 'event' as const }))]
       .sort((a, b) => (b.f.dropped ?? 0) - (a.f.dropped ?? 0) || (b.f.waits ?? 0) - (a.f.waits ?? 0) || (b.f.unmatched ?? 0) - (a.f.unmatched ?? 0) || b.f.count - a.f.count).slice(0, Math.max(0, 12 - unheard.length - quiet.length));
     const rows = flows.map(({ k, f, kind }) => {
       const el = this.row(`flow:${kind}:${k}`, () => h('div', { class: `monitor-flow ${kind}`, 'data-flow': k }));
-      setText(el, `${kind === 'data' ? '━' : '┅'} ${k.replace('->', ' → ')} ×${f.count}${flowDropText(k, f)} · last ${fmtT(f.last)}${flowValueText(f)}${flowWaitText(f)}`);
+      setText(el, flowRow(kind, k, f));
       setAttr(el, 'data-unmatched', String(f.unmatched ?? 0));
       setAttr(el, 'data-pulse', String(pulsing.has(k)));
       setAttr(el, 'data-dropped', String(f.dropped ?? 0));
@@ -714,12 +714,22 @@ function ownKey(target: EventTarget | null, key: string): boolean {
   return pressable && (key === ' ' || key === 'Enter');
 }
 
+/**
+ * The panel's text: what the rows say holds a record's names and values (anybody's), written
+ * visibly at the last step too (conventions' visibleText, its line breaks kept: the crashed
+ * modules' alert is a line each), whatever built it; the words of panel-text.ts already are.
+ */
 function setText(el: HTMLElement, text: string): void {
-  if (el.textContent !== text) el.textContent = text;
+  const shown = visibleText(text, { keepNewlines: true });
+  if (el.textContent !== shown) el.textContent = shown;
 }
 
+/** What is read or shown of an element (its tooltip, its accessible name) is written visibly; its data-* attributes keep the raw text. */
+const SHOWN_ATTRIBUTES = new Set(['title', 'aria-label']);
+
 function setAttr(el: HTMLElement, name: string, value: string): void {
-  if (el.getAttribute(name) !== value) el.setAttribute(name, value);
+  const shown = SHOWN_ATTRIBUTES.has(name) ? visibleText(value, { keepNewlines: true }) : value;
+  if (el.getAttribute(name) !== shown) el.setAttribute(name, shown);
 }
 
 function replaceIfChanged(parent: HTMLElement, children: HTMLElement[]): void {

@@ -1,8 +1,12 @@
 /**
  * The Monitor panel's words (monitor-panel.ts), as pure functions of what it shows: the time
  * readout, the follow button, a rule's row (its cause, accessible name and tooltip). Kept apart so that they are tested
- * without a page (panel-text.test.ts).
+ * without a page (panel-text.test.ts). What a record says (a value, a name, a line: anybody's, a
+ * module's code writes its log) is written visibly (conventions' visibleText): a bidirectional
+ * override, a control character or a character of no width as its escape, `\u202e`, as the CLI
+ * shows it (docs/watching-a-run.md "Characters shown as escapes").
  */
+import { visibleText } from '@contract-studio/conventions';
 import { durationText, flowWaitsLine, priorityText, readableCause, SIMULATED_FLOWS_WHY, waitTotalsText, type FlowWaitTotals } from '@contract-studio/build-service/trace';
 import { MAX_NAMES, quantileBoundNs, type EndedSchema, type FlowCount, type KeptRequests, type ModuleState, type MonitorState, type PeriodicState, type RuleState } from './monitor-state.js';
 
@@ -79,12 +83,12 @@ export interface RuleTexts {
  * (or its supervisor): a click has nothing to open.
  */
 export function ruleTexts(fn: string, rule: string, rs: Pick<RuleState, 'active' | 'since' | 'cause' | 'started'> | undefined, gone: boolean, fnGone = false): RuleTexts {
-  const cause = rs ? `← ${readableCause(rs.cause)}${rs.active && rs.started.length ? ` → ${rs.started.join(', ')}` : ''}` : '';
+  const cause = rs ? `← ${visibleText(readableCause(rs.cause))}${rs.active && rs.started.length ? ` → ${visibleText(rs.started.join(', '))}` : ''}` : '';
   const state = rs ? `${rs.active ? 'active' : 'inactive'} since ${fmtT(rs.since)}${cause ? ` ${cause}` : ''}` : 'not active yet';
   return {
     shown: rs && !rs.active ? `off ${cause}` : cause,
-    label: `${rule}, ${state}${gone ? `, ${NOT_IN_MODEL_LONG}` : ''}`,
-    title: `${fn}.${rule}${rs ? ` ${state}` : `: ${state}`}${gone ? ` · ${NOT_IN_MODEL_LONG}${fnGone ? ', and so is its function: nothing to open' : ': click to open its function'}` : ' · click to open it in its .contract file'}`,
+    label: `${visibleText(rule)}, ${state}${gone ? `, ${NOT_IN_MODEL_LONG}` : ''}`,
+    title: `${visibleText(`${fn}.${rule}`)}${rs ? ` ${state}` : `: ${state}`}${gone ? ` · ${NOT_IN_MODEL_LONG}${fnGone ? ', and so is its function: nothing to open' : ': click to open its function'}` : ' · click to open it in its .contract file'}`,
   };
 }
 
@@ -96,7 +100,7 @@ export function flowDropText(key: string, f: FlowCount): string {
   if (!f.dropped) return '';
   const consumer = key.slice(key.indexOf('->') + 2).split(':')[0];
   const why = f.dropReason === 'queue full' ? `queue full: ${consumer} does not read it fast enough` : f.dropReason;
-  return ` · ${f.dropped} dropped (${why})`;
+  return ` · ${f.dropped} dropped (${visibleText(why ?? '')})`;
 }
 
 /**
@@ -117,7 +121,7 @@ export function flowWaitTitle(key: string, f: FlowCount): string {
   if (!f.waits) return '';
   const [from = '', to = ''] = key.split('->');
   const name = (end: string): string => end.slice(0, end.lastIndexOf(':'));
-  return flowWaitsLine(`${from} -> ${to}`, name(from), name(to), waitTotals(f));
+  return visibleText(flowWaitsLine(`${from} -> ${to}`, name(from), name(to), waitTotals(f)));
 }
 
 function waitTotals(f: FlowCount): FlowWaitTotals {
@@ -131,7 +135,15 @@ function waitTotals(f: FlowCount): FlowWaitTotals {
  */
 export function flowValueText(f: FlowCount): string {
   if (f.lastValue === undefined) return '';
-  return ` · value ${f.lastValue}${f.unmatched ? ` · ⚠ ${f.unmatched} changed no rule` : ''}`;
+  return ` · value ${visibleText(f.lastValue)}${f.unmatched ? ` · ⚠ ${f.unmatched} changed no rule` : ''}`;
+}
+
+/**
+ * A flow's Deliveries row: `┅ CAM:0 → LFR:0 ×2 · last +1.652499 s · value "found" · ⚠ 2 changed no
+ * rule` (`━` for a data flow), its ports, value and findings written visibly. `key`: `CAM:0->LFR:0`.
+ */
+export function flowRow(kind: 'data' | 'event', key: string, f: FlowCount): string {
+  return `${kind === 'data' ? '━' : '┅'} ${visibleText(key.replace('->', ' → '))} ×${f.count}${flowDropText(key, f)} · last ${fmtT(f.last)}${flowValueText(f)}${flowWaitText(f)}`;
 }
 
 /**
@@ -141,7 +153,7 @@ export function flowValueText(f: FlowCount): string {
  * simulation's line saying why none is told (its modules ran no code) without ⚠.
  */
 export function quietDataFlowRow(line: string): string {
-  return isSimulatedFlowsLine(line) ? `━ ${line}` : `━ ⚠ ${line}`;
+  return isSimulatedFlowsLine(line) ? `━ ${visibleText(line)}` : `━ ⚠ ${visibleText(line)}`;
 }
 
 /** Whether a line of the flows' findings is a simulation's saying why its flows are not told (its modules ran no code): no warning. */
@@ -154,7 +166,7 @@ export function isSimulatedFlowsLine(line: string): boolean {
  * no one received them · last +3.306199 s`.
  */
 export function unheardEventsRow(port: string, f: FlowCount): string {
-  return `┅ ${port} → no subscriber ×${f.count} · no one received ${f.count === 1 ? 'it' : 'them'} · last ${fmtT(f.last)}`;
+  return `┅ ${visibleText(port)} → no subscriber ×${f.count} · no one received ${f.count === 1 ? 'it' : 'them'} · last ${fmtT(f.last)}`;
 }
 
 /**
@@ -166,7 +178,7 @@ export function unheardEventsRow(port: string, f: FlowCount): string {
  */
 export function crashedModulesText(modules: ReadonlyMap<string, ModuleState>): string {
   const ended = [...modules].filter(([, m]) => m.crashed !== undefined || m.gone !== undefined).sort((a, b) => a[1].since - b[1].since);
-  return ended.map(([name, m]) => `⚠ ${name} ${(m.crashed ?? m.gone)!.replace(/^(crashed|gone): /, `$1 at ${fmtT(m.since)}: `)}`).join('\n');
+  return ended.map(([name, m]) => visibleText(`⚠ ${name} ${(m.crashed ?? m.gone)!.replace(/^(crashed|gone): /, `$1 at ${fmtT(m.since)}: `)}`)).join('\n');
 }
 
 /**
@@ -174,7 +186,7 @@ export function crashedModulesText(modules: ReadonlyMap<string, ModuleState>): s
  * `keeping requests for VEL: its mailbox is full since +3.510000 s (first: STOP)`.
  */
 export function keptRequestsLine(receiver: string, k: KeptRequests): string {
-  return `keeping requests for ${receiver}: its mailbox is full since ${fmtT(k.since)}${k.request ? ` (first: ${k.request})` : ''}`;
+  return visibleText(`keeping requests for ${receiver}: its mailbox is full since ${fmtT(k.since)}${k.request ? ` (first: ${k.request})` : ''}`);
 }
 
 /**
@@ -215,7 +227,7 @@ export function moduleCpuText(released: readonly string[], modules: ReadonlyMap<
   });
   const more = said.length - RELEASED_MODULES_SHOWN;
   const notShown = more > 0 ? `; ${more} more ${more === 1 ? 'module' : 'modules'} not shown: contract trace tells each` : '';
-  return said.length ? ` · CPU per release: ${said.slice(0, RELEASED_MODULES_SHOWN).join('; ')}${notShown}` : '';
+  return said.length ? ` · CPU per release: ${visibleText(said.slice(0, RELEASED_MODULES_SHOWN).join('; '))}${notShown}` : '';
 }
 
 /**
@@ -223,7 +235,7 @@ export function moduleCpuText(released: readonly string[], modules: ReadonlyMap<
  * levels, deadline misses on a busy machine are expected, and the run settings' Real-time is the cure.
  */
 export function schedulingText(detail: string): string {
-  const how = `Scheduling: ORD ${priorityText(detail)}`;
+  const how = `Scheduling: ORD ${visibleText(priorityText(detail))}`;
   return detail.startsWith('nice') ? `${how} (deadline misses are likely on a busy machine; the run settings' Real-time runs the modules at their SCHED_FIFO priorities)` : how;
 }
 

@@ -1,3 +1,4 @@
+import { visibleText } from '@contract-studio/conventions';
 import { h, debounce } from '../util/dom.js';
 import { Emitter } from '../util/emitter.js';
 import { RovingFocus } from '../util/roving-focus.js';
@@ -95,7 +96,7 @@ export class ProblemsPanel {
           class: `problem-row ${p.severity}`, role: 'option', 'aria-selected': 'false', tabindex: -1, 'data-path': p.path, 'data-line': p.line, 'data-index': index,
           'data-key': `${p.path}:${p.line}:${p.column}:${p.message}`, onclick: () => this.onOpen.fire(p),
         },
-          h('span', { class: 'sev', role: 'img', 'aria-label': p.severity }, ICON[p.severity]), h('span', { class: 'msg' }, p.message),
+          h('span', { class: 'sev', role: 'img', 'aria-label': p.severity }, ICON[p.severity]), h('span', { class: 'msg' }, visibleText(p.message)),
           h('span', { class: 'src' }, p.source), h('span', { class: 'pos' }, `[${p.line}:${p.column}]`)));
       }
       const label = `${path}: ${ps.length} problem${ps.length > 1 ? 's' : ''}`;

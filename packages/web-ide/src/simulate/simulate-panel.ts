@@ -8,6 +8,7 @@
  */
 import { formatTime } from '@contract-studio/language/scenario';
 import { readableCause } from '@contract-studio/build-service/trace';
+import { visibleText } from '@contract-studio/conventions';
 import { actionLines } from '@contract-studio/simulator/trace';
 import { h } from '../util/dom.js';
 import './simulate.css';
@@ -122,7 +123,7 @@ export class SimulatePanel {
     this.rules.replaceChildren(...[...rules].map(([name, s]) =>
       h('div', { class: `sim-rule ${s.active ? 'active' : 'inactive'}`, 'data-rule': name },
         h('span', { class: 'sim-rule-name' }, `${s.active ? '●' : '○'} ${name}`), ' ',
-        h('span', { class: 'sim-cause' }, `← ${readableCause(s.cause)} at ${formatTime(s.timeNs)}`))));
+        h('span', { class: 'sim-cause' }, `← ${visibleText(readableCause(s.cause))} at ${formatTime(s.timeNs)}`))));
     if (!rules.size) this.rules.textContent = 'no rule changed yet';
     const last = r.steps.at(-1);
     // a step the simulator kept without its lists (its bound on a scenario's records): what it
@@ -135,7 +136,7 @@ export class SimulatePanel {
     } else {
       this.schemas.replaceChildren(...(last?.schemas ?? []).map((s) => h('div', { class: 'sim-schema', 'data-schema': s }, s)));
       this.locals.replaceChildren(...(last?.locals ?? []).map((l) =>
-        h('div', { class: 'sim-local' }, `${l.supervisor}.${l.function}.${l.name}: ${l.type} = ${l.value}`)));
+        h('div', { class: 'sim-local' }, visibleText(`${l.supervisor}.${l.function}.${l.name}: ${l.type} = ${l.value}`))));
     }
     const shown = r.steps.slice(-MAX_SHOWN_STEPS);
     this.steps.replaceChildren(...shown.map((s) => {
@@ -144,15 +145,16 @@ export class SimulatePanel {
       // state after its time: what happened at its time too)
       const before = (t: number) => t < s.timeNs || (t === s.timeNs && (s.kind === 'expect' || s.kind === 'end'));
       const at = (t: number) => (t === s.timeNs ? '' : `${formatTime(t)}  `);
-      const changes = s.rules.map((c) => ({ t: c.timeNs, el: h('div', { class: 'sim-change' }, `${at(c.timeNs)}${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  ← ${readableCause(c.cause)}`) }));
+      const changes = s.rules.map((c) => ({ t: c.timeNs, el: h('div', { class: 'sim-change' }, `${at(c.timeNs)}${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  ← ${visibleText(readableCause(c.cause))}`) }));
       // in a run's words (`undo: stop module SCN`) with what the holds decided, as `simulate --verbose` shows them
-      const actions = actionLines(s.actions, s.records).slice(0, 50).map((a) => ({ t: a.t, el: h('div', { class: 'sim-action' }, `${at(a.t)}${a.who}: ${a.text}`) }));
+      const actions = actionLines(s.actions, s.records).slice(0, 50).map((a) => ({ t: a.t, el: h('div', { class: 'sim-action' }, visibleText(`${at(a.t)}${a.who}: ${a.text}`)) }));
       const lines = [...changes, ...actions].map((x, i) => ({ ...x, i })).sort((x, y) => x.t - y.t || x.i - y.i);
       return h('div', { class: `sim-step-row ${s.ok ? '' : 'failed'}` },
         ...lines.filter((x) => before(x.t)).map((x) => x.el),
         h('div', { class: 'sim-step-head' }, `${formatTime(s.timeNs)}  ${s.kind === 'end' ? '(end)' : s.source}${s.message ? `  ✖ ${s.message}` : ''}${s.trimmed ? `  (kept without its ${s.trimmed === 'bare' ? 'lists' : 'actions and records'}: the simulator's bound)` : ''}`),
         ...lines.filter((x) => !before(x.t)).map((x) => x.el),
-        s.output ? h('pre', { class: 'sim-output' }, s.output) : null);
+        // what the project's C printed: its lines kept, every other control or invisible character as its escape
+        s.output ? h('pre', { class: 'sim-output' }, visibleText(s.output, { keepNewlines: true })) : null);
     }));
     this.steps.scrollTop = this.steps.scrollHeight;
   }

@@ -2,9 +2,11 @@
  * The bars of one Timeline lane, for the part of it on screen: a long run has hundreds of thousands
  * of activations (a 1 kHz schema, 60 s, four modules: 240,000), far more than an SVG can hold or
  * a screen can show. Activations closer than a pixel are drawn as one bar that says how many it
- * holds; only the bars within the visible range are made. Pure: used by timeline-view.ts and tests.
+ * holds; only the bars within the visible range are made, each with its tooltip (barTitle). Pure:
+ * used by timeline-view.ts and tests.
  */
 import type { Activation } from './activation-log.js';
+import { visibleText } from '@contract-studio/conventions';
 
 export interface LaneBar {
   x1: number;
@@ -91,4 +93,30 @@ export function lanesOf(acts: readonly Activation[], max: number): { modules: st
     else lanes[i]!.push(a);
   }
   return { modules, lanes, leftOutModules: named.length - modules.length, leftOutActs };
+}
+
+/** A bar's tooltip (its module, times and the records' words), written visibly (visibleText: a record's `\u202e` as its escape). */
+export function barTitle(b: LaneBar, t0: number): string {
+  return visibleText(barWords(b, t0), { keepNewlines: true });
+}
+
+function barWords(b: LaneBar, t0: number): string {
+  const ms = (t: number) => `${((t - t0) / 1e6).toFixed(3)} ms`;
+  const a = b.first;
+  if (b.count === 1 && a.event) return `${a.module} handled an event from ${a.event.from} at ${ms(a.start)}: ${handlerEnd(a)}`;
+  if (b.count === 1) return `${a.module} ${ms(a.start)} → ${a.end !== undefined ? `${((a.end - a.start) / 1e6).toFixed(3)} ms` : 'running'} ${a.detail}${a.gone ? ` · gone at ${ms(a.end!)}: ${a.gone}` : ''}`;
+  const end = b.last.end;
+  const what = b.first.event && b.last.event ? 'events handled' : 'activations';
+  return `${a.module}: ${b.count} ${what} from ${ms(a.start)} to ${end !== undefined ? ms(end) : `${ms(b.last.start)} (running)`} (zoom in to see each)`;
+}
+
+/** What the records say of an event handler's end. */
+function handlerEnd(a: Activation): string {
+  const e = a.event!;
+  const took = `${((a.end! - a.start) / 1e6).toFixed(3)} ms`;
+  const wrote = e.records ? `, ${e.records} record(s) written` : '';
+  if (e.ended) return `handled in ${took}${wrote}`;
+  // a log of a runtime that wrote no event_handled: the handler's own records bound it
+  if (!e.records) return 'its end is not in the log (no event_handled, no record of the handler): the bar marks the reception';
+  return `its end is not in the log (no event_handled): its handler's last record (${e.last}${wrote}) ${took} later`;
 }

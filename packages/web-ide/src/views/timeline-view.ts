@@ -1,8 +1,9 @@
+import { visibleText } from '@contract-studio/conventions';
 import { h } from '../util/dom.js';
 import { api } from '../api.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { inferPeriodOf, type Activation, type ModelModules } from './activation-log.js';
-import { laneBars, lanesOf, lastTime, type LaneBar } from './timeline-bars.js';
+import { barTitle, laneBars, lanesOf, lastTime } from './timeline-bars.js';
 import { endGoneActivations, goneFromLauncherLines, type GoneAt } from './gone-activations.js';
 import { launcherLinesOnRecordClock } from '../monitor/job-launcher-lines.js';
 import { activationsFromLogs, localLogFolders, readTraceFile, readWorkspaceLogs, type LogFile, type RunLogs } from './run-logs.js';
@@ -16,7 +17,8 @@ export const MAX_LANES = 256;
 function svg<K extends keyof SVGElementTagNameMap>(tag: K, attrs: Record<string, string | number>, text?: string): SVGElementTagNameMap[K] {
   const el = document.createElementNS(SVG, tag);
   for (const [k, v] of Object.entries(attrs)) el.setAttribute(k, String(v));
-  if (text !== undefined) el.textContent = text;
+  // a lane's module name, a bar's or a mark's tooltip: what the logs say, written visibly
+  if (text !== undefined) el.textContent = visibleText(text, { keepNewlines: true });
   return el;
 }
 
@@ -111,10 +113,10 @@ export class TimelineView {
    * the other is offered as `local:<folder>`.
    */
   private renderSources(selected: string, held: string[] = [], traces: string[] = []): void {
-    const options = [h('option', { value: 'local', selected: selected === 'local' }, held[0] ? `Local logs: ${held[0]}/` : 'Local logs (contract run / make run)')];
-    for (const folder of held.slice(1)) options.push(h('option', { value: `local:${folder}`, selected: selected === `local:${folder}` }, `Local logs: ${folder}/`));
-    for (const path of traces) options.push(h('option', { value: `file:${path}`, selected: selected === `file:${path}` }, `Trace file: ${path}`));
-    if (this.run) options.unshift(h('option', { value: 'run', selected: selected === 'run' }, `Last Build & Run (${this.run.label.replace(/^Build & Run /, '')})`));
+    const options = [h('option', { value: 'local', selected: selected === 'local' }, held[0] ? visibleText(`Local logs: ${held[0]}/`) : 'Local logs (contract run / make run)')];
+    for (const folder of held.slice(1)) options.push(h('option', { value: `local:${folder}`, selected: selected === `local:${folder}` }, visibleText(`Local logs: ${folder}/`)));
+    for (const path of traces) options.push(h('option', { value: `file:${path}`, selected: selected === `file:${path}` }, visibleText(`Trace file: ${path}`)));
+    if (this.run) options.unshift(h('option', { value: 'run', selected: selected === 'run' }, visibleText(`Last Build & Run (${this.run.label.replace(/^Build & Run /, '')})`)));
     this.source.replaceChildren(...options);
     this.source.value = selected === 'run' && this.run ? 'run' : held.includes(selected.slice(6)) || traces.includes(selected.slice(5)) ? selected : 'local';
   }
@@ -175,7 +177,7 @@ export class TimelineView {
     if (!files.length && emptyText) {
       this.info.textContent = '';
       this.last = undefined;
-      this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `${emptyText} ${problems.join(' ')}`.trim()));
+      this.canvas.replaceChildren(h('div', { class: 'pad muted' }, visibleText(`${emptyText} ${problems.join(' ')}`.trim())));
       return;
     }
     const { acts, errors } = activationsFromLogs(files, this.model);
@@ -189,7 +191,7 @@ export class TimelineView {
     this.last = { acts, files, errors, gone };
     this.drawBars = undefined;
     if (!acts.length) {
-      this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No activations in ${files} log file(s). ${errors.join(' ')}`));
+      this.canvas.replaceChildren(h('div', { class: 'pad muted' }, visibleText(`No activations in ${files} log file(s). ${errors.join(' ')}`)));
       return;
     }
     // a lane per module, MAX_LANES at most (by name): a log a module's code wrote may name a new
@@ -276,31 +278,10 @@ export class TimelineView {
     root.append(axis);
     const leftOut = leftOutModules ? ` · ${leftOutModules} more modules named in the logs, past the ${MAX_LANES} lanes shown (${leftOutActs} activations left out: did a module's code write into its log?)` : '';
     const events = acts.reduce((n, a) => n + (a.event ? 1 : 0), 0);
-    this.info.textContent = `${acts.length - events} activations · ${modules.length} modules${events ? ` · ${events} events handled` : ''}${leftOut}${drawnGone.length ? ` · gone: ${drawnGone.map((g) => `${g.module} at ${((g.at - t0) / 1e6).toFixed(3)} ms (${g.words})`).join(', ')}` : ''} · ${(span / 1e6).toFixed(1)} ms${periodOf ? ` · period ≈ ${(periodOf.ns / 1e6).toFixed(2)} ms (of ${periodOf.module}: the grid's #k)` : ''}${errors.length ? ` · left out or not whole: ${errors.slice(0, 8).join('; ')}${errors.length > 8 ? `; ${errors.length - 8} more` : ''}` : ''}`;
+    this.info.textContent = visibleText(`${acts.length - events} activations · ${modules.length} modules${events ? ` · ${events} events handled` : ''}${leftOut}${drawnGone.length ? ` · gone: ${drawnGone.map((g) => `${g.module} at ${((g.at - t0) / 1e6).toFixed(3)} ms (${g.words})`).join(', ')}` : ''} · ${(span / 1e6).toFixed(1)} ms${periodOf ? ` · period ≈ ${(periodOf.ns / 1e6).toFixed(2)} ms (of ${periodOf.module}: the grid's #k)` : ''}${errors.length ? ` · left out or not whole: ${errors.slice(0, 8).join('; ')}${errors.length > 8 ? `; ${errors.length - 8} more` : ''}` : ''}`);
     this.canvas.replaceChildren(root);
     // drawn once the svg is in place: a zoom keeps the scroll position, clamped to the new width
     drawBars();
     this.drawBars = drawBars;
   }
-}
-
-function barTitle(b: LaneBar, t0: number): string {
-  const ms = (t: number) => `${((t - t0) / 1e6).toFixed(3)} ms`;
-  const a = b.first;
-  if (b.count === 1 && a.event) return `${a.module} handled an event from ${a.event.from} at ${ms(a.start)}: ${handlerEnd(a)}`;
-  if (b.count === 1) return `${a.module} ${ms(a.start)} → ${a.end !== undefined ? `${((a.end - a.start) / 1e6).toFixed(3)} ms` : 'running'} ${a.detail}${a.gone ? ` · gone at ${ms(a.end!)}: ${a.gone}` : ''}`;
-  const end = b.last.end;
-  const what = b.first.event && b.last.event ? 'events handled' : 'activations';
-  return `${a.module}: ${b.count} ${what} from ${ms(a.start)} to ${end !== undefined ? ms(end) : `${ms(b.last.start)} (running)`} (zoom in to see each)`;
-}
-
-/** What the records say of an event handler's end. */
-function handlerEnd(a: Activation): string {
-  const e = a.event!;
-  const took = `${((a.end! - a.start) / 1e6).toFixed(3)} ms`;
-  const wrote = e.records ? `, ${e.records} record(s) written` : '';
-  if (e.ended) return `handled in ${took}${wrote}`;
-  // a log of a runtime that wrote no event_handled: the handler's own records bound it
-  if (!e.records) return 'its end is not in the log (no event_handled, no record of the handler): the bar marks the reception';
-  return `its end is not in the log (no event_handled): its handler's last record (${e.last}${wrote}) ${took} later`;
 }
