@@ -507,11 +507,11 @@ export class MonitorPanel {
     // none active: once one has ended, which, when and why (a simulation's or a run's end reads as such)
     if (!items.length) {
       const none = this.row('schema:none', () => h('div', { class: 'muted monitor-schemas-none' }, 'none'));
-      setText(none, visibleText(noActiveSchemaText(s)));
+      setText(none, noActiveSchemaText(s)); // setText writes it visibly
       items.push(none);
     }
     replaceIfChanged(this.schemasEl, items);
-    setText(this.schedEl, s.ordPriority ? schedulingText(visibleText(s.ordPriority)) : '');
+    setText(this.schedEl, s.ordPriority ? schedulingText(s.ordPriority) : ''); // setText writes it visibly
     if (this.schedEl.hidden !== !s.ordPriority) this.schedEl.hidden = !s.ordPriority;
     const periodic = [...new Set([...this.catalogue.filter((c) => c.kind === 'periodic').map((c) => c.name), ...s.periodic.keys()])];
     const blocks = periodic.map((name) => {

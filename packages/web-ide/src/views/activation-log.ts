@@ -116,9 +116,11 @@ export function activationsFromCsv(text: string, file = '', unreadable?: { n: nu
   // holds `,run_started,`, `,run_finished,`, `,event_received,`, `,scheduler,` or `,supervisor,`
   const inside = iEvent > 0 && iEvent < header.length - 1;
   const clocks = new LogClocks();
-  const released = releasedModules(lines, file);
+  // read only when a supervisor record's module is one the model does not name (a log of a plain
+  // module holds no supervisor record, a supervisor's no release: most logs never read it)
+  let released: Set<string> | undefined;
   const mayBeSupervisor = (module: string): boolean =>
-    model?.supervisors.has(module) ? true : model?.modules.has(module) ? false : !released.has(module);
+    model?.supervisors.has(module) ? true : model?.modules.has(module) ? false : !(released ??= releasedModules(lines, file)).has(module);
   for (let n = 1; n < lines.length; n++) {
     const l = lines[n]!;
     if (inside && !handling.size && !l.includes(',run_started,') && !l.includes(',run_finished,') && !l.includes(',event_received,') && !l.includes(',scheduler,') && !l.includes(',supervisor,')) continue;
