@@ -1,5 +1,5 @@
 import { chromium, type Browser, type Page } from 'playwright-core';
-import { beforeAll, afterAll } from 'vitest';
+import { beforeAll, afterAll, expect } from 'vitest';
 import { cpSync, mkdtempSync, rmSync, mkdirSync, realpathSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { basename, join } from 'node:path';
@@ -264,4 +264,35 @@ export async function startTwoBrowsersOn(path: string, name: string, onPageError
   await openFile(s.page, path);
   await openFile(other.page, path);
   return { s, other };
+}
+
+/** Shows the Monitor in the side pane (a click on its button when it is not shown yet). */
+export async function showMonitor(page: Page): Promise<void> {
+  if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
+  await page.locator('.side-pane .monitor-view').waitFor();
+}
+
+/**
+ * Copies the trace file `fixture` into the session's workspace as `name` and replays it in the
+ * Monitor (its entry in the run list, once the list offers it).
+ */
+export async function replayTraceFile(s: Session, fixture: string, name: string): Promise<void> {
+  cpSync(fixture, join(s.workspace, name));
+  await showMonitor(s.page);
+  const option = s.page.locator(`.monitor-sources option[value="file:${name}"]`);
+  await expect.poll(() => option.count(), { timeout: 10_000 }).toBe(1);
+  await s.page.locator('.monitor-sources').selectOption(`file:${name}`);
+}
+
+/**
+ * Types a step into the Simulate panel's step field (a one-line Monaco editor) and clicks Inject
+ * (not Enter: under load a completion list can open late and take the Enter).
+ */
+export async function injectStep(page: Page, text: string): Promise<void> {
+  await page.locator('.sim-step .view-lines').click();
+  await page.keyboard.press('ControlOrMeta+A');
+  await page.keyboard.press('Backspace');
+  await page.keyboard.type(text, { delay: 5 });
+  await page.keyboard.press('Escape'); // a suggestion list the typing opened
+  await page.click('.sim-inject');
 }

@@ -12,7 +12,7 @@ import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { cpSync, mkdirSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { startSession, openIde, shot, type Session } from './harness.js';
+import { startSession, openIde, shot, type Session, showMonitor } from './harness.js';
 
 const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/tutorial-run', import.meta.url));
 type Page = Session['page'];
@@ -93,8 +93,7 @@ async function scrollViewAbovePanel(page: Page, by: number): Promise<number> {
 
 /** The Monitor open on the recorded run, its diagram drawn (the first test opens it; a test run alone opens it itself). */
 async function showRecordedRun(page: Page): Promise<void> {
-  if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
-  await page.locator('.side-pane .monitor-view').waitFor();
+  await showMonitor(page);
   if ((await page.locator('.monitor-sources').inputValue()) !== 'dir:recorded') await page.locator('.monitor-sources').selectOption('dir:recorded');
   await expect.poll(() => page.locator('.monitor-view .arch-svg').getAttribute('data-schema'), { timeout: 15_000 }).toBeTruthy();
 }

@@ -5,11 +5,11 @@
  * tooltip and the Deliveries row read reversed; the Monitor writes the override as its escape, as
  * the CLI does (docs/watching-a-run.md "Characters shown as escapes").
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { describe, it, expect } from 'vitest';
 import { mkdirSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { startSession, openIde, shot, type Session } from './harness.js';
+import { ideSession, shot, showMonitor } from './harness.js';
 
 const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/lsot-run', import.meta.url));
 /** CAM's value with an override, and FOLLOW's last change caused by it (its log's own words otherwise). */
@@ -19,21 +19,16 @@ const withOverride = (text: string) => text
 const RAW = /[\u202a-\u202e\u2066-\u2069]/;
 
 describe('Monitor: a recorded value holding a bidi override', () => {
-  let s: Session;
-  beforeAll(async () => {
-    s = await startSession({ buildService: false, port: 7241 });
-    mkdirSync(join(s.workspace, 'bidi'));
-    for (const name of readdirSync(FIXTURE).filter((n) => n.endsWith('.csv'))) writeFileSync(join(s.workspace, 'bidi', name), withOverride(readFileSync(join(FIXTURE, name), 'utf8')));
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
+  const s = ideSession({ buildService: false, port: 7241 }, {
+    beforeOpen: (s) => {
+      mkdirSync(join(s.workspace, 'bidi'));
+      for (const name of readdirSync(FIXTURE).filter((n) => n.endsWith('.csv'))) writeFileSync(join(s.workspace, 'bidi', name), withOverride(readFileSync(join(FIXTURE, name), 'utf8')));
+    },
   });
 
   it('the rule\'s cause, its tooltip and the flow\'s Deliveries row show the override as \\u202e', async () => {
     const { page } = s;
-    if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
-    await page.locator('.side-pane .monitor-view').waitFor();
+    await showMonitor(page);
     await page.locator('.monitor-sources').selectOption('dir:bidi');
     const row = page.locator('.monitor-flows .monitor-flow.event[data-flow="CAM:0->LFR:0"]');
     await expect.poll(() => row.textContent()).toBe('┅ CAM:0 → LFR:0 ×2 · last +1.652499 s · value "\\u202efound" · ⚠ 2 changed no rule');

@@ -13,7 +13,7 @@ import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { WebSocketServer } from 'ws';
 import { encodeTraceRecords, parseTrace, renderStory } from '@contract-studio/build-service/trace';
-import { startSession, openIde, shot, type Session } from './harness.js';
+import { startSession, openIde, shot, type Session, showMonitor } from './harness.js';
 import type {} from '../../src/app/ide-hook.js';
 
 const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/event-flood-run', import.meta.url));
@@ -45,8 +45,7 @@ describe('Monitor: an event flood\'s waits for room, every streak counted', () =
   it('a recorded run: the row has the waits of all six streaks, its title trace\'s closing line', async () => {
     const { page } = s;
     expect(CLOSING).toBe("PSH's events to BIN (PSH:0 -> BIN:0) waited for room 24 times (5.767 s in all, up to 298.552 ms): BIN takes its events slower than PSH posts them; delivery latency up to 540.627 ms");
-    if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
-    await page.locator('.side-pane .monitor-view').waitFor();
+    await showMonitor(page);
     await page.locator('.monitor-sources').selectOption('dir:flood');
     await expect.poll(() => rowText(page)).toMatch(/ · ⚠ waited for room 24 times \(5\.767 s in all, up to 298\.552 ms\)$/);
     expect(await row(page).getAttribute('title')).toBe(CLOSING);

@@ -9,7 +9,7 @@ import { cpSync, mkdirSync, readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { parseTrace, renderStory } from '@contract-studio/build-service/trace';
-import { startSession, openIde, shot, type Session } from './harness.js';
+import { startSession, openIde, shot, type Session, showMonitor } from './harness.js';
 
 const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/lsot-run', import.meta.url));
 const FILES = readdirSync(FIXTURE).filter((n) => n.endsWith('.csv')).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') }));
@@ -29,8 +29,7 @@ describe('Monitor: a supervisor\'s events that changed no rule', () => {
   it('a recorded run: CAM:0 → LFR:0 says its last value and that its 2 events changed no rule, as contract trace counts them', async () => {
     const { page } = s;
     expect(renderStory(parseTrace(FILES))).toContain('LFR got CAM:0 ×2 that changed no rule: "lost" ×1, "found" ×1');
-    if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
-    await page.locator('.side-pane .monitor-view').waitFor();
+    await showMonitor(page);
     await page.locator('.monitor-sources').selectOption('dir:lsot');
     const row = page.locator('.monitor-flows .monitor-flow.event[data-flow="CAM:0->LFR:0"]');
     await expect.poll(() => row.textContent()).toBe('┅ CAM:0 → LFR:0 ×2 · last +1.652499 s · value "found" · ⚠ 2 changed no rule');

@@ -17,7 +17,7 @@ import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { WebSocketServer } from 'ws';
 import { encodeTraceRecords, parseTrace, renderStory } from '@contract-studio/build-service/trace';
-import { startSession, openIde, shot, type Session } from './harness.js';
+import { startSession, openIde, shot, type Session, showMonitor } from './harness.js';
 import type {} from '../../src/app/ide-hook.js';
 
 const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/crash-and-unheard-run', import.meta.url));
@@ -59,8 +59,7 @@ describe('Monitor: an event no one received, a module that crashed', () => {
     const { page } = s;
     expect(UNHEARD).toBe('+0.336166s event GCS:1 posted with no subscriber: no one received it (no supervisor or module subscribed to GCS:1 then); its later ones are counted at the end');
     expect(CRASH).toBe('+0.432425s crashed: signal 11 (SIGSEGV): a bad pointer: NULL, freed, or past the end of an array');
-    if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
-    await page.locator('.side-pane .monitor-view').waitFor();
+    await showMonitor(page);
     await page.locator('.monitor-sources').selectOption('dir:faults');
     await expect.poll(() => label(page)).toBe('8 CSV log(s) in faults');
     expect(await marksOf(page, 'unheard')).toEqual([UNHEARD.replace('+0.336166s ', '+0.336166s GCS: ').replace('its later ones are counted at the end', 'Deliveries counts its later ones')]);

@@ -22,7 +22,7 @@ import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { WebSocketServer } from 'ws';
 import { encodeTraceRecords } from '@contract-studio/build-service/trace';
-import { startSession, openIde, shot, activeTab, openFile, type Session } from './harness.js';
+import { startSession, openIde, shot, activeTab, openFile, type Session, showMonitor } from './harness.js';
 import { axeScan, seriousOf } from './axe.js';
 import type {} from '../../src/app/ide-hook.js';
 
@@ -36,8 +36,7 @@ const rule = (page: Page, id: string) => page.locator(`.monitor-rule[data-rule="
 const label = (page: Page) => page.locator('.monitor-source').textContent();
 
 async function showRecorded(page: Page): Promise<void> {
-  if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
-  await page.locator('.side-pane .monitor-view').waitFor();
+  await showMonitor(page);
   await page.locator('.monitor-sources').selectOption('dir:recorded');
   await expect.poll(() => label(page)).toBe('9 CSV log(s) in recorded');
 }

@@ -8,11 +8,11 @@
  * scheduling note is not under *Active schemas*; the Timeline keeps MSC's lane.
  * Real IDE server (no build service), headless Chromium.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { describe, it, expect } from 'vitest';
 import { appendFileSync, cpSync, mkdirSync, readdirSync, renameSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { startSession, openIde, shot, type Session } from './harness.js';
+import { ideSession, shot } from './harness.js';
 
 const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/tutorial-run', import.meta.url));
 const DATE = '4-Dec-2026-05h49m24s';
@@ -20,21 +20,17 @@ const FORGED = 'ORD_4-Dec-2026-05h49m59s.csv';
 const PORT = Number(process.env.E2E_FORGED_LOGS_PORT ?? 7261);
 
 describe('Monitor and Timeline on a logs folder a module forged into', () => {
-  let s: Session;
-  beforeAll(async () => {
-    s = await startSession({ port: PORT, buildService: false });
-    const logs = join(s.workspace, 'logs');
-    mkdirSync(logs);
-    cpSync(FIXTURE, logs, { recursive: true });
-    for (const f of readdirSync(logs).filter((n) => n.endsWith('.csv'))) renameSync(join(logs, f), join(logs, `${f.slice(0, -4)}_${DATE}.csv`));
-    appendFileSync(join(logs, FORGED), '52092900000000,2026-12-04T05:49:27.253000Z,ORD,ord_deadline_miss,,,0,schema=schemaCommande1 cycle=3 tick_ns=52092787155629\n');
-    appendFileSync(join(logs, `MSC_${DATE}.csv`), [
-      '52094200000000,2026-12-04T05:49:28.553000Z,MSC,supervisor,,,0,function <img src=x onerror=alert(1)>() started',
-      '52094200000100,2026-12-04T05:49:28.553000Z,MSC,sup_rule,,,0,rule <b>X</b>.Y active', ''].join('\n'));
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
+  const s = ideSession({ port: PORT, buildService: false }, {
+    beforeOpen: (s) => {
+      const logs = join(s.workspace, 'logs');
+      mkdirSync(logs);
+      cpSync(FIXTURE, logs, { recursive: true });
+      for (const f of readdirSync(logs).filter((n) => n.endsWith('.csv'))) renameSync(join(logs, f), join(logs, `${f.slice(0, -4)}_${DATE}.csv`));
+      appendFileSync(join(logs, FORGED), '52092900000000,2026-12-04T05:49:27.253000Z,ORD,ord_deadline_miss,,,0,schema=schemaCommande1 cycle=3 tick_ns=52092787155629\n');
+      appendFileSync(join(logs, `MSC_${DATE}.csv`), [
+        '52094200000000,2026-12-04T05:49:28.553000Z,MSC,supervisor,,,0,function <img src=x onerror=alert(1)>() started',
+        '52094200000100,2026-12-04T05:49:28.553000Z,MSC,sup_rule,,,0,rule <b>X</b>.Y active', ''].join('\n'));
+    },
   });
 
   it('the replay says the file that is no log first, counts no miss of ORD, lists MSC as no supervisor; the scheduling note stands apart', async () => {

@@ -4,37 +4,32 @@
  * per release, so that the list is not taken for the whole (docs/watching-a-run.md, the Monitor's
  * schema block).
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { describe, it, expect } from 'vitest';
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { startSession, openIde, shot, type Session } from './harness.js';
+import { ideSession, shot, showMonitor } from './harness.js';
 
 const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
 const W = '2026-12-07T11:02:48.568320Z';
 const NAMES = Array.from({ length: 20 }, (_, k) => `M${String(k).padStart(2, '0')}`);
 
 describe("Monitor: a schema's CPU per release with more modules than shown", () => {
-  let s: Session;
-  beforeAll(async () => {
-    s = await startSession({ port: 7180 });
-    const dir = join(s.workspace, 'wide-run');
-    mkdirSync(dir);
-    const ord = [HEADER, `1000000000,${W},ORD,module_started,,,0,pid=39 priority=50`,
-      ...NAMES.map((m, k) => `${1100000000 + k * 1000},${W},ORD,ord_release,${m},,0,schema=wide cycle=0 tick_ns=1100000000 release_ns=${1100000000 + k * 1000} release=${k + 1}`)];
-    writeFileSync(join(dir, 'ORD_07-Dec-2026-11h02m48s.csv'), ord.join('\n') + '\n');
-    NAMES.forEach((m, k) => writeFileSync(join(dir, `${m}_07-Dec-2026-11h02m48s.csv`), [HEADER,
-      `${1100000500 + k * 1000},${W},${m},run_started,ORD,,0,activation=1`,
-      `${1150000000 + k * 1000},${W},${m},run_finished,,,0,activation=1 cpu_ns=${(k + 1) * 1_000_000} ACK_FINISHED`].join('\n') + '\n'));
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
+  const s = ideSession({ port: 7180 }, {
+    beforeOpen: (s) => {
+      const dir = join(s.workspace, 'wide-run');
+      mkdirSync(dir);
+      const ord = [HEADER, `1000000000,${W},ORD,module_started,,,0,pid=39 priority=50`,
+        ...NAMES.map((m, k) => `${1100000000 + k * 1000},${W},ORD,ord_release,${m},,0,schema=wide cycle=0 tick_ns=1100000000 release_ns=${1100000000 + k * 1000} release=${k + 1}`)];
+      writeFileSync(join(dir, 'ORD_07-Dec-2026-11h02m48s.csv'), ord.join('\n') + '\n');
+      NAMES.forEach((m, k) => writeFileSync(join(dir, `${m}_07-Dec-2026-11h02m48s.csv`), [HEADER,
+        `${1100000500 + k * 1000},${W},${m},run_started,ORD,,0,activation=1`,
+        `${1150000000 + k * 1000},${W},${m},run_finished,,,0,activation=1 cpu_ns=${(k + 1) * 1_000_000} ACK_FINISHED`].join('\n') + '\n'));
+    },
   });
 
   it('shows the first 16 modules and says the 4 more', async () => {
     const { page } = s;
-    if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
-    await page.locator('.side-pane .monitor-view').waitFor();
+    await showMonitor(page);
     await page.locator('.monitor-sources').selectOption('dir:wide-run');
     await page.locator('.monitor-view').focus();
     await page.keyboard.press('End');

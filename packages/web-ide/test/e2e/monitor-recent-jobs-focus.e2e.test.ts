@@ -6,22 +6,15 @@
  * Monitor hidden it brings none. Before this test, removing the focus listener failed no test.
  * Real IDE server and build service, headless Chromium.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { startSession, openIde, type Session } from './harness.js';
+import { describe, it, expect } from 'vitest';
+import { ideSession } from './harness.js';
 import { RECENT_RUNS_MS } from '../../src/monitor/monitor-controller.js';
 
 /** One of the ports this test may use (E2E_RECENT_FOCUS_PORT to choose another). */
 const PORT = Number(process.env.E2E_RECENT_FOCUS_PORT ?? 7122);
 
 describe('Monitor: the recent jobs read again when the window is focused', () => {
-  let s: Session;
-  beforeAll(async () => {
-    s = await startSession({ port: PORT });
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  const s = ideSession({ port: PORT });
 
   it('at once while the Monitor is shown, not waiting for the next timed read; not at all while it is hidden', async () => {
     const { page } = s;

@@ -6,10 +6,8 @@
  * server, headless Chromium.
  */
 import { describe, it, expect } from 'vitest';
-import { copyFileSync } from 'node:fs';
-import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { ideSession, shot } from './harness.js';
+import { ideSession, replayTraceFile, shot } from './harness.js';
 
 /** One of the ports this test may use (E2E_SIMULATED_FLOWS_PORT to choose another). */
 const PORT = Number(process.env.E2E_SIMULATED_FLOWS_PORT ?? 8211);
@@ -20,11 +18,7 @@ describe("a simulation's trace file, replayed", () => {
 
   it('shows no ⚠ row of a silent flow, one row saying a simulation runs no module code', async () => {
     const { page } = s;
-    copyFileSync(FIXTURE, join(s.workspace, 'flows.jsonl'));
-    if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
-    await page.locator('.side-pane .monitor-view').waitFor();
-    await expect.poll(() => page.locator('.monitor-sources option[value="file:flows.jsonl"]').count(), { timeout: 10_000 }).toBe(1);
-    await page.locator('.monitor-sources').selectOption('file:flows.jsonl');
+    await replayTraceFile(s, FIXTURE, 'flows.jsonl');
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 10_000 }).toMatch(/^Trace file flows\.jsonl · simulation of flows\.scenario · /);
     await expect.poll(() => page.locator('.monitor-flow.quiet').allTextContents(), { timeout: 10_000 }).toEqual([
       '━ a simulation runs no module code: data values are not simulated, nor the events its modules post: what 2 data flows and 1 event flow connected over 1 s delivered is not told',

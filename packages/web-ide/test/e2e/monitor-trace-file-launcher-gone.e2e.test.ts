@@ -9,7 +9,7 @@
 import { describe, it, expect } from 'vitest';
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { ideSession, shot } from './harness.js';
+import { ideSession, shot, showMonitor } from './harness.js';
 import type {} from '../../src/app/ide-hook.js';
 
 /** One of the ports this test may use (E2E_TRACE_FILE_GONE_PORT to choose another). */
@@ -32,8 +32,7 @@ describe('a trace file with the launcher\'s end lines, replayed', () => {
       rec('2500000000', 'ORD', 'user', 'tick'),
     ];
     writeFileSync(join(s.workspace, 'killed.jsonl'), lines.map((l) => JSON.stringify(l)).join('\n') + '\n');
-    if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
-    await page.locator('.side-pane .monitor-view').waitFor();
+    await showMonitor(page);
     await expect.poll(() => page.locator('.monitor-sources option[value="file:killed.jsonl"]').count(), { timeout: 10_000 }).toBe(1);
     await page.locator('.monitor-sources').selectOption('file:killed.jsonl');
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 10_000 }).toBe('Trace file killed.jsonl · 5 record(s)');

@@ -14,7 +14,7 @@ import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { WebSocketServer } from 'ws';
 import { encodeTraceRecords, parseTrace, renderStory } from '@contract-studio/build-service/trace';
-import { startSession, openIde, shot, type Session } from './harness.js';
+import { startSession, openIde, shot, type Session, showMonitor } from './harness.js';
 import type {} from '../../src/app/ide-hook.js';
 
 const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/killed-ord-run', import.meta.url));
@@ -45,8 +45,7 @@ describe('Monitor: an undo ORD never served', () => {
   it('a recorded run: the mark on the schema\'s row at the run\'s end says it in contract trace\'s words', async () => {
     const { page } = s;
     expect(TOLD).toMatch(/^while the run stopped: ORD's log ends with no exit record .* schemaCommande1 may have stayed active to its end$/);
-    if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
-    await page.locator('.side-pane .monitor-view').waitFor();
+    await showMonitor(page);
     await page.locator('.monitor-sources').selectOption('dir:killedord');
     await expect.poll(() => label(page)).toBe('9 CSV log(s) in killedord');
     expect(await unservedMarks(page)).toEqual([`schemaCommande1: ${TOLD}`]);

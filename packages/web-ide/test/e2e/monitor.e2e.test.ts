@@ -12,7 +12,7 @@ import { spawnSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 import { WebSocketServer } from 'ws';
 import { encodeTraceRecords, parseTrace } from '@contract-studio/build-service/trace';
-import { startSession, openIde, shot, openFile, activeTab, activeValue, MOBILE_ROBOT, TUTORIAL, type Session } from './harness.js';
+import { startSession, openIde, shot, openFile, activeTab, activeValue, MOBILE_ROBOT, TUTORIAL, type Session, showMonitor } from './harness.js';
 import { activationsFromLogs } from '../../src/views/run-logs.js';
 import type {} from '../../src/app/ide-hook.js';
 
@@ -56,8 +56,7 @@ async function docShot(page: Page, name: string, hidden: readonly string[] = [])
 
 /** The Monitor docked beside the editor (opened with its button when it is not). */
 async function monitorShown(page: Page): Promise<void> {
-  if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
-  await page.locator('.side-pane .monitor-view').waitFor();
+  await showMonitor(page);
 }
 
 /** Moves the cursor to t (ns since the start) the way the panel's own controls do. */

@@ -10,38 +10,20 @@
  *   ended and no such row came. Then `stop SUP.action`: Active schemas says which schema ended,
  *   when and why, not a bare `none`.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { copyFileSync } from 'node:fs';
-import { join } from 'node:path';
+import { describe, it, expect } from 'vitest';
 import { fileURLToPath } from 'node:url';
-import { startSession, openIde, shot, type Session } from './harness.js';
+import { ideSession, injectStep, replayTraceFile, shot, type Session } from './harness.js';
 import type {} from '../../src/app/ide-hook.js';
 
 /** One of the ports this test may use (E2E_SIMULATE_END_PORT to choose another). */
 const PORT = Number(process.env.E2E_SIMULATE_END_PORT ?? 7101);
 const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/simulated-flows/flows.jsonl', import.meta.url));
 
-let s: Session;
-beforeAll(async () => {
-  s = await startSession({ port: PORT, buildService: false });
-  await openIde(s);
-}, 120_000);
-afterAll(async () => {
-  await s?.close();
-});
+const s = ideSession({ port: PORT, buildService: false, timeout: 120_000 });
 
 type Page = Session['page'];
 const now = (page: Page) => page.locator('.sim-now').textContent();
 const activeSchemaRows = (page: Page) => page.locator('.side-pane .monitor-schemas > div').allTextContents();
-
-async function injectStep(page: Page, text: string): Promise<void> {
-  await page.locator('.sim-step .view-lines').click();
-  await page.keyboard.press('ControlOrMeta+A');
-  await page.keyboard.press('Backspace');
-  await page.keyboard.type(text, { delay: 5 });
-  await page.keyboard.press('Escape'); // a suggestion list the typing opened
-  await page.click('.sim-inject');
-}
 
 async function runTo(page: Page, time: string, shown: string): Promise<void> {
   await page.fill('.sim-time', time);
@@ -53,11 +35,7 @@ describe("a simulation's end in the Monitor", () => {
   it('a trace file replayed, and the Simulate panel\'s session, end with the schema they left active; a stop says what it ended', async () => {
     const { page } = s;
     // the simulation's trace file: its end shows schemaCommande1 active, as the simulation left it
-    copyFileSync(FIXTURE, join(s.workspace, 'flows.jsonl'));
-    if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
-    await page.locator('.side-pane .monitor-view').waitFor();
-    await expect.poll(() => page.locator('.monitor-sources option[value="file:flows.jsonl"]').count(), { timeout: 10_000 }).toBe(1);
-    await page.locator('.monitor-sources').selectOption('file:flows.jsonl');
+    await replayTraceFile(s, FIXTURE, 'flows.jsonl');
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 10_000 }).toMatch(/^Trace file flows\.jsonl · simulation of flows\.scenario · /);
     await page.locator('#monitor-follow').click(); // the cursor at the end
     await expect.poll(() => page.locator('.side-pane .monitor-view').getAttribute('data-t'), { timeout: 10_000 }).toBe('3500000000');

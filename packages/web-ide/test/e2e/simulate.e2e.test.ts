@@ -11,7 +11,7 @@ import { describe, it, expect } from 'vitest';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { spawnSync } from 'node:child_process';
-import { ideSession, shot, PKG, type Session } from './harness.js';
+import { ideSession, injectStep, shot, PKG, type Session } from './harness.js';
 import type {} from '../../src/app/ide-hook.js';
 
 const s = ideSession({ buildService: false, timeout: 120_000 });
@@ -22,18 +22,6 @@ const monitorRule = (page: Page, id: string) => page.locator(`.monitor-rule[data
 /** Waits for the session's re-simulation after a click: the panel's virtual time says `t`. */
 const now = (page: Page) => page.locator('.sim-now').textContent();
 const stepValue = (page: Page) => page.evaluate(() => window.__ide.simulate.panel.stepInput.value as string);
-/**
- * Types a step into the step field (a one-line Monaco editor) and clicks Inject (not Enter: under
- * load a completion list can open late and take the Enter).
- */
-async function injectStep(page: Page, text: string): Promise<void> {
-  await page.locator('.sim-step .view-lines').click();
-  await page.keyboard.press('ControlOrMeta+A');
-  await page.keyboard.press('Backspace');
-  await page.keyboard.type(text, { delay: 5 });
-  await page.keyboard.press('Escape'); // a suggestion list the typing opened
-  await page.click('.sim-inject');
-}
 
 describe('Simulate panel', () => {
   it('steps the tutorial story, shows rules with causes in the panel and the Monitor, saves a scenario that contract simulate passes', async () => {

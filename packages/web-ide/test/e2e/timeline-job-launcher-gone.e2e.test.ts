@@ -9,13 +9,13 @@
  * Before, this source read none of the job's launcher lines and marked nothing. Real IDE server and
  * build service, headless Chromium.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { describe, it, expect } from 'vitest';
 import { spawnSync } from 'node:child_process';
 import { modulePid } from '@contract-studio/build-service/test-support/module-pid';
 import { activationsFromLogs } from '../../src/views/run-logs.js';
 import { startedPids } from '../../src/views/gone-activations.js';
 import type { Page } from 'playwright-core';
-import { startSession, openIde, openFile, shot, type Session } from './harness.js';
+import { ideSession, openFile, shot } from './harness.js';
 import type {} from '../../src/app/ide-hook.js';
 
 const canBuild = spawnSync('bwrap', ['--version']).status === 0;
@@ -24,14 +24,7 @@ const PORT = Number(process.env.E2E_TIMELINE_JOB_GONE_PORT ?? 7121);
 const MODULE = 'MAB';
 
 describe.skipIf(!canBuild)("the Timeline's last Build & Run: a module SIGKILLed mid-run", () => {
-  let s: Session;
-  beforeAll(async () => {
-    s = await startSession({ port: PORT });
-    await openIde(s);
-  }, 60_000);
-  afterAll(async () => {
-    await s?.close();
-  });
+  const s = ideSession({ port: PORT });
 
   it("is marked gone in its lane at the launcher's line's time, as the Monitor's replay of the job shows it", async () => {
     const { page } = s;
